@@ -1,0 +1,175 @@
+// The scene model: everything ddish renders, loaded from glTF 2.0 (see gltf_loader.h) and posed
+// at a time t (see Scene::pose). Plain data; the tracer and the rasterizer build their own
+// acceleration structures and GPU resources from it.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "scene/aabb.h"
+#include "scene/animation.h"
+
+namespace ddish::scene {
+
+// A decoded texture: RGBA8, row 0 at the top (as glTF images are stored). Each glTF image is
+// decoded once and shared by every material and texture slot that uses it.
+struct Texture {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba8;  // width * height * 4 bytes
+};
+
+struct TextureSlot {
+  int texture = -1;   // index into Scene::textures, -1 when the slot is empty
+  int texcoord = 0;   // which UV set; ddish loads UV0 only and rejects others
+  explicit operator bool() const { return texture >= 0; }
+};
+
+enum class AlphaMode { Opaque, Mask, Blend };
+
+// glTF metallic-roughness material with all its factors and textures.
+struct Material {
+  std::string name;
+  glm::vec4 base_color{1.0f};
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  glm::vec3 emissive{0.0f};        // emissiveFactor
+  float emissive_strength = 1.0f;  // KHR_materials_emissive_strength
+  float normal_scale = 1.0f;
+  float occlusion_strength = 1.0f;
+  AlphaMode alpha_mode = AlphaMode::Opaque;
+  float alpha_cutoff = 0.5f;
+  bool double_sided = false;
+
+  TextureSlot base_color_texture;          // sRGB
+  TextureSlot metallic_roughness_texture;  // linear: G = roughness, B = metallic
+  TextureSlot normal_texture;              // linear, tangent space
+  TextureSlot occlusion_texture;           // linear, R
+  TextureSlot emissive_texture;            // sRGB
+
+  // Emitted radiance before the emissive texture: emissiveFactor × emissive_strength.
+  glm::vec3 emission() const { return emissive * emissive_strength; }
+  bool is_emissive() const { return glm::any(glm::greaterThan(emission(), glm::vec3(0.0f))); }
+};
+
+// One glTF primitive, triangulated and indexed. Vertex arrays all have positions.size() entries.
+struct Mesh {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;   // generated (area-weighted) when the file has none
+  std::vector<glm::vec2> uvs;       // UV0; zeros when the file has none
+  std::vector<glm::vec4> tangents;  // xyz tangent, w handedness; generated when missing
+  std::vector<std::uint32_t> indices;  // 3 per triangle
+  int material = -1;                   // index into Scene::materials; -1 = glTF default material
+  Aabb bounds;                         // object space
+
+  std::size_t triangle_count() const { return indices.size() / 3; }
+};
+
+// A node of the glTF hierarchy. Local TRS is what animations drive; world is derived by pose().
+struct Node {
+  std::string name;
+  int parent = -1;
+  std::vector<int> children;
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::vec3 scale{1.0f};
+  glm::mat4 world{1.0f};
+  std::vector<int> meshes;  // Scene::meshes drawn at this node (one per glTF primitive)
+  int camera = -1;          // index into Scene::cameras
+  int light = -1;           // index into Scene::lights
+};
+
+// A mesh placed in the world. Instances of the same mesh share its vertex data.
+struct Instance {
+  int mesh = -1;
+  int node = -1;
+  glm::mat4 transform{1.0f};  // object to world, updated by pose()
+};
+
+enum class LightType { Directional, Point, Spot };
+
+// KHR_lights_punctual in radiometric units (DESIGN.md "Light units"): a directional light's
+// intensity is the irradiance on a surface facing it, a point or spot light's intensity is
+// radiant intensity (power per steradian).
+struct Light {
+  std::string name;
+  LightType type = LightType::Point;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  float range = 0.0f;  // 0 = infinite
+  float inner_cone = 0.0f;
+  float outer_cone = 0.785398163f;  // pi/4, the glTF default
+  int node = -1;
+  // World-space placement, updated by pose(). direction is where the light travels (-Z of its node).
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};
+
+  glm::vec3 radiant() const { return color * intensity; }
+};
+
+// A perspective camera. World placement (eye, forward, up) is updated by pose().
+struct Camera {
+  std::string name;
+  float yfov = 0.8f;  // radians
+  std::optional<float> aspect;
+  float znear = 0.01f;
+  float zfar = 1000.0f;
+  int node = -1;
+  glm::vec3 eye{0.0f};
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+};
+
+// What the sidecar NAME.ddish.json adds to a glTF file (format: ../shared/scenes/README.md).
+struct Sidecar {
+  glm::vec3 environment{0.0f};               // uniform radiance of escaping rays
+  std::optional<glm::ivec3> probe_counts;    // probe grid counts
+  std::optional<Aabb> probe_bounds;          // probe grid bounds; default: the scene's bounds
+  std::string camera;                        // default camera node name; empty = first camera
+};
+
+struct Scene {
+  std::string path;  // the file it was loaded from
+  std::vector<Texture> textures;
+  std::vector<Material> materials;
+  std::vector<Mesh> meshes;
+  std::vector<Node> nodes;
+  std::vector<int> roots;  // nodes of the glTF default scene without a parent
+  std::vector<Instance> instances;
+  std::vector<Light> lights;
+  std::vector<Camera> cameras;
+  std::vector<Animation> animations;
+  Sidecar sidecar;
+  double time = 0.0;  // the time the scene is posed at
+
+  // Poses the scene at time t (seconds): evaluates every animation, then recomputes node world
+  // transforms, instance transforms, light and camera placements. Returns the indices of the
+  // instances whose transform changed, so consumers rebuild only what moved.
+  std::vector<int> pose(double t);
+
+  // Duration of the longest animation (0 when there is none).
+  double animation_duration() const;
+
+  // World-space bounds of every instance at the current pose.
+  Aabb bounds() const;
+
+  std::size_t triangle_count() const;  // over instances (after instancing)
+
+  // The material of a mesh, or the glTF default material when the mesh has none.
+  const Material& material_of(const Mesh& mesh) const;
+
+  // The default camera: the sidecar's named camera, else the first camera, else none.
+  const Camera* default_camera() const;
+  const Camera* find_camera(const std::string& name) const;
+
+  glm::vec3 environment() const { return sidecar.environment; }
+};
+
+}  // namespace ddish::scene
