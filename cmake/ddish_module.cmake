@@ -29,5 +29,5 @@ function(ddish_tests name)
   target_compile_definitions(test_${name} PRIVATE
     DDISH_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     DDISH_BINARY_DIR="${PROJECT_BINARY_DIR}")
-  gtest_discover_tests(test_${name} PROPERTIES LABELS ${name} DISCOVERY_TIMEOUT 60)
+  gtest_discover_tests(test_${name} TEST_PREFIX "${name}." PROPERTIES LABELS ${name} DISCOVERY_TIMEOUT 60)
 endfunction()

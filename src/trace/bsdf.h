@@ -1,17 +1,20 @@
 // The glTF 2.0 metallic-roughness BSDF: Lambert diffuse plus GGX specular with height-correlated
 // Smith masking-shadowing and Schlick Fresnel, mixed for metals and dielectrics as the glTF
-// specification's appendix B describes. All directions are in the local shading frame (z = the
-// shading normal), both pointing away from the surface.
+// specification's appendix B describes, except that the diffuse base is coupled to the specular
+// layer by albedo scaling so that energy is conserved (bsdf.cpp explains). All directions are in
+// the local shading frame (z = the shading normal), both pointing away from the surface.
 #pragma once
 
 #include <glm/glm.hpp>
+
+#include "trace/specular_albedo.h"
 
 namespace ddish::trace {
 
 struct BsdfParams {
   glm::vec3 base_color{1.0f};
   float metallic = 0.0f;
-  float roughness = 1.0f;  // glTF perceptual roughness; GGX alpha = roughness^2 (clamped, see .cpp)
+  float roughness = 1.0f;  // glTF perceptual roughness; GGX alpha = roughness^2 (clamped: Ggx::kMinAlpha)
 };
 
 struct BsdfSample {
@@ -34,9 +37,23 @@ class Bsdf {
 
   const BsdfParams& params() const { return params_; }
 
+  // The two lobes of eval() separately (f without the cosine; eval is their sum): the
+  // diffuse base and the specular microfacet lobe. For tests and for debugging views.
+  glm::vec3 eval_diffuse(const glm::vec3& wo, const glm::vec3& wi) const;
+  glm::vec3 eval_specular(const glm::vec3& wo, const glm::vec3& wi) const;
+  // Probability with which sample() picks the specular lobe for this wo.
+  float specular_probability(const glm::vec3& wo) const;
+
  private:
+  // pdf() for wi and wo above the surface, with the lobe choice already known.
+  float mixture_pdf(const glm::vec3& wo, const glm::vec3& wi, float p_specular) const;
+
   BsdfParams params_;
   float alpha_;
+  glm::vec3 f0_{0.04f};       // specular reflectance at normal incidence: mix(0.04, base, metallic)
+  glm::vec3 diffuse_{0.0f};   // (1 - metallic) base / (pi (1 - E_avg)), see bsdf.cpp
+  float diffuse_weight_ = 0;  // (1 - metallic) * mean(base): the diffuse lobe's share estimate
+  DielectricSpecularAlbedo::Slice layer_albedo_;  // E(mu) of the dielectric layer at this roughness
 };
 
 }  // namespace ddish::trace

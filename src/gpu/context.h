@@ -1,0 +1,43 @@
+// An instance and a device together, in the order they must be destroyed: what a renderer or a
+// command needs to start using Vulkan in one line.
+//
+//   gpu::Context gpu({.validation = opts.validation, .device_index = opts.device});
+//   gpu::Buffer b(gpu.device(), bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUse::upload);
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "gpu/device.h"
+#include "gpu/instance.h"
+
+namespace ddish::gpu {
+
+struct ContextOptions {
+  bool validation = false;                     // or DDISH_VALIDATION=1
+  bool synchronization_validation = false;     // only with validation
+  std::optional<std::uint32_t> device_index;   // --device N
+  std::string application_name = "ddish";
+};
+
+class Context {
+ public:
+  explicit Context(const ContextOptions& options = {})
+      : instance_({.validation = options.validation,
+                   .synchronization_validation = options.synchronization_validation,
+                   .application_name = options.application_name}),
+        device_(instance_, {.index = options.device_index}) {}
+
+  Instance& instance() { return instance_; }
+  const Instance& instance() const { return instance_; }
+  Device& device() { return device_; }
+  const Device& device() const { return device_; }
+  const ValidationLog& validation() const { return instance_.validation(); }
+
+ private:
+  Instance instance_;  // constructed first, destroyed last
+  Device device_;
+};
+
+}  // namespace ddish::gpu

@@ -1,0 +1,79 @@
+// The logical device: one graphics+compute queue on the selected physical device, with the
+// optional features the renderer can use switched on where the device has them.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/device_info.h"
+
+namespace ddish::gpu {
+
+class Instance;
+
+struct DeviceOptions {
+  std::optional<std::uint32_t> index;  // --device N; default: see default_device_index()
+};
+
+// Optional features, each true only when the device has it (and it was therefore enabled).
+// Callers branch on these instead of assuming a feature: lavapipe, for one, has no
+// descriptor indexing, and a GPU may lack shaderOutputLayer.
+struct DeviceFeatures {
+  bool multiview = false;                    // VK_KHR_multiview (core 1.1): N views per pass
+  bool shader_output_layer = false;          // gl_Layer from vertex shaders
+  bool shader_output_viewport_index = false; // gl_ViewportIndex from vertex shaders
+  bool multi_viewport = false;
+  bool sampler_anisotropy = false;
+  bool fill_mode_non_solid = false;  // wireframe debugging
+  bool depth_clamp = false;          // shadow-map pancaking
+  bool multi_draw_indirect = false;
+  bool draw_indirect_first_instance = false;
+  bool sample_rate_shading = false;
+  bool independent_blend = false;
+  bool texture_compression_bc = false;
+  bool shader_int16 = false;
+  bool shader_float16 = false;
+  bool storage_buffer_16bit_access = false;  // fp16 SH probe data read straight from buffers
+  bool host_query_reset = false;
+  bool timeline_semaphore = false;
+  bool synchronization2 = false;
+  bool dynamic_rendering = false;  // rendering without VkRenderPass objects
+  // Required by every 1.3 device, and needed: glslang's vulkan1.3 target writes the work-group
+  // size as LocalSizeId, which is only valid with maintenance4 on.
+  bool maintenance4 = false;
+};
+
+class Device {
+ public:
+  // Opens options.index or the default device. Throws GpuError when there is no usable device or
+  // the index is out of range.
+  explicit Device(const Instance& instance, const DeviceOptions& options = {});
+  ~Device();
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+
+  VkDevice handle() const { return device_; }
+  VkPhysicalDevice physical() const { return info_.handle; }
+  VkQueue queue() const { return queue_; }
+  std::uint32_t queue_family() const { return *info_.queue_family; }
+  const DeviceInfo& info() const { return info_; }
+  const DeviceFeatures& features() const { return features_; }
+  const VkPhysicalDeviceLimits& limits() const { return info_.limits; }
+  const VkPhysicalDeviceMemoryProperties& memory_properties() const { return memory_; }
+  const Instance& instance() const { return instance_; }
+
+  // Blocks until the queue has finished everything submitted.
+  void wait_idle() const;
+
+ private:
+  const Instance& instance_;
+  DeviceInfo info_;
+  DeviceFeatures features_;
+  VkPhysicalDeviceMemoryProperties memory_{};
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+};
+
+}  // namespace ddish::gpu

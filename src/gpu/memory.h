@@ -1,0 +1,59 @@
+// Device memory: picking a memory type for a use, and an allocation that stays mapped for its
+// whole life when the host can see it. One allocation per resource is enough for the handful of
+// large buffers and images a frame needs; nothing here sub-allocates.
+#pragma once
+
+#include <cstdint>
+#include <utility>
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/handle.h"
+
+namespace ddish::gpu {
+
+class Device;
+
+enum class MemoryUse {
+  device_local,  // GPU-only data (vertex buffers, render targets); may not be host visible
+  upload,        // written by the host, read by the GPU: host visible and coherent
+  readback,      // written by the GPU, read by the host: host visible, coherent, cached if possible
+};
+
+// The first memory type allowed by type_bits that has all `required` properties, preferring one
+// that also has all `preferred` ones. Throws GpuError when none qualifies.
+std::uint32_t find_memory_type(const VkPhysicalDeviceMemoryProperties& properties,
+                               std::uint32_t type_bits, VkMemoryPropertyFlags required,
+                               VkMemoryPropertyFlags preferred = 0);
+
+// The required and preferred property flags of a use.
+VkMemoryPropertyFlags required_properties(MemoryUse use);
+VkMemoryPropertyFlags preferred_properties(MemoryUse use);
+
+class DeviceMemory {
+ public:
+  DeviceMemory() = default;
+  // Allocates memory meeting `requirements` for `use`, mapped when host visible. Coherence is
+  // required of host-visible types, so writes through mapped() need no flush.
+  DeviceMemory(const Device& device, const VkMemoryRequirements& requirements, MemoryUse use);
+  DeviceMemory(DeviceMemory&& other) noexcept { *this = std::move(other); }
+  DeviceMemory& operator=(DeviceMemory&& other) noexcept;
+
+  VkDeviceMemory handle() const { return memory_.get(); }
+  VkDeviceSize size() const { return size_; }
+  std::uint32_t type_index() const { return type_index_; }
+  VkMemoryPropertyFlags properties() const { return properties_; }
+  // The host address of the whole allocation, or nullptr when it is not host visible and
+  // coherent.
+  void* mapped() const { return mapped_; }
+
+ private:
+  // Freeing mapped memory unmaps it implicitly, so no separate unmap step is needed.
+  DeviceHandle<VkDeviceMemory, vkFreeMemory> memory_;
+  VkDeviceSize size_ = 0;
+  std::uint32_t type_index_ = 0;
+  VkMemoryPropertyFlags properties_ = 0;
+  void* mapped_ = nullptr;
+};
+
+}  // namespace ddish::gpu

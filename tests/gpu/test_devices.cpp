@@ -1,0 +1,166 @@
+// Device enumeration, the default-device rule and --device N.
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gpu/device_info.h"
+#include "gpu_test.h"
+
+namespace ddish::gpu::test {
+namespace {
+
+DeviceInfo fake(std::uint32_t index, DeviceType type, std::uint32_t api = VK_API_VERSION_1_3) {
+  DeviceInfo info;
+  info.index = index;
+  info.name = "fake " + std::to_string(index);
+  info.type = type;
+  info.api_version = api;
+  info.queue_family = 0;
+  return info;
+}
+
+TEST(DeviceSelection, PrefersDiscreteThenIntegratedThenVirtualThenCpu) {
+  using enum DeviceType;
+  EXPECT_EQ(default_device_index({fake(0, cpu), fake(1, discrete)}), 1u);
+  EXPECT_EQ(default_device_index({fake(0, cpu), fake(1, integrated), fake(2, discrete)}), 2u);
+  EXPECT_EQ(default_device_index({fake(0, cpu), fake(1, integrated)}), 1u);
+  EXPECT_EQ(default_device_index({fake(0, cpu), fake(1, virtual_gpu)}), 1u);
+  EXPECT_EQ(default_device_index({fake(0, other), fake(1, cpu)}), 1u);
+  EXPECT_EQ(default_device_index({fake(0, discrete), fake(1, discrete)}), 0u);
+  EXPECT_EQ(default_device_index({}), std::nullopt);
+}
+
+TEST(DeviceSelection, SkipsUnusableDevices) {
+  using enum DeviceType;
+  DeviceInfo old_gpu = fake(0, discrete, VK_API_VERSION_1_2);
+  DeviceInfo no_graphics = fake(1, integrated);
+  no_graphics.queue_family.reset();
+  EXPECT_FALSE(old_gpu.usable());
+  EXPECT_NE(old_gpu.unusable_reason().find("1.2.0"), std::string::npos);
+  EXPECT_FALSE(no_graphics.usable());
+  EXPECT_EQ(default_device_index({old_gpu, no_graphics, fake(2, cpu)}), 2u);
+  EXPECT_EQ(default_device_index({old_gpu, no_graphics}), std::nullopt);
+  try {
+    select_device({old_gpu, no_graphics}, std::nullopt);
+    FAIL() << "an unusable device was selected by default";
+  } catch (const GpuError& e) {
+    EXPECT_STREQ(e.what(),
+                 "no usable Vulkan device (0: fake 0, Vulkan 1.2.0 (ddish needs 1.3); 1: fake 1, "
+                 "no queue family with both graphics and compute)");
+  }
+
+  try {
+    select_device({old_gpu}, 0u);
+    FAIL() << "an unusable device was selected";
+  } catch (const GpuError& e) {
+    EXPECT_STREQ(e.what(),
+                 "Vulkan device 0 (fake 0) cannot be used: Vulkan 1.2.0 (ddish needs 1.3)");
+  }
+}
+
+TEST(DeviceSelection, ExplicitIndexOverridesAndOutOfRangeThrows) {
+  using enum DeviceType;
+  const std::vector<DeviceInfo> devices = {fake(0, cpu), fake(1, discrete)};
+  EXPECT_EQ(select_device(devices, std::nullopt), 1u);
+  EXPECT_EQ(select_device(devices, 0u), 0u);
+  try {
+    select_device(devices, 99u);
+    FAIL() << "device 99 was selected";
+  } catch (const GpuError& e) {
+    EXPECT_STREQ(e.what(),
+                 "Vulkan device 99 does not exist: 2 devices found (0: fake 0, 1: fake 1)");
+  }
+  try {
+    select_device({}, std::nullopt);
+    FAIL() << "a device was selected from none";
+  } catch (const GpuError& e) {
+    EXPECT_NE(std::string(e.what()).find("no Vulkan device found"), std::string::npos);
+  }
+}
+
+TEST(DeviceSelection, Formatting) {
+  EXPECT_EQ(version_string(VK_MAKE_API_VERSION(0, 1, 3, 230)), "1.3.230");
+  EXPECT_EQ(sample_counts(VK_SAMPLE_COUNT_1_BIT | VK_SAMPLE_COUNT_4_BIT),
+            (std::vector<std::uint32_t>{1, 4}));
+  EXPECT_EQ(sample_counts(0), std::vector<std::uint32_t>{});
+  DeviceInfo nvidia = fake(0, DeviceType::discrete);
+  nvidia.vendor_id = 0x10DE;
+  nvidia.driver_version = (535u << 22) | (104u << 14) | (5u << 6);
+  EXPECT_EQ(driver_version_string(nvidia), "535.104.5.0");
+  EXPECT_EQ(type_name(DeviceType::cpu), "CPU");
+  EXPECT_EQ(type_name(DeviceType::discrete), "discrete GPU");
+}
+
+class Devices : public GpuTest {};
+
+TEST_F(Devices, EnumeratesTheDevicesOfTheMachine) {
+  const std::vector<DeviceInfo> devices = enumerate_devices(gpu().instance());
+  ASSERT_FALSE(devices.empty());
+  const auto chosen = default_device_index(devices);
+  ASSERT_TRUE(chosen.has_value());
+  EXPECT_EQ(*chosen, device().info().index);
+  for (std::uint32_t i = 0; i < devices.size(); ++i) {
+    const DeviceInfo& d = devices[i];
+    EXPECT_EQ(d.index, i);
+    EXPECT_FALSE(d.name.empty());
+    EXPECT_GE(d.api_version, VK_API_VERSION_1_0);
+    if (!d.usable()) continue;
+    // Vulkan guarantees single-sampled attachments and, where multiview exists, at least 6 views.
+    EXPECT_NE(d.color_sample_counts & VK_SAMPLE_COUNT_1_BIT, 0u);
+    EXPECT_NE(d.msaa_sample_counts() & VK_SAMPLE_COUNT_1_BIT, 0u);
+    EXPECT_GE(d.max_multiview_view_count, 6u);
+    EXPECT_GT(d.timestamp_period, 0.0f);
+    EXPECT_GT(d.limits.maxComputeWorkGroupInvocations, 0u);
+  }
+}
+
+TEST_F(Devices, OpensAGraphicsAndComputeQueue) {
+  const DeviceInfo& info = device().info();
+  EXPECT_TRUE(info.usable());
+  ASSERT_TRUE(info.queue_family.has_value());
+  EXPECT_EQ(device().queue_family(), *info.queue_family);
+  EXPECT_NE(device().queue(), VK_NULL_HANDLE);
+  EXPECT_GE(info.api_version, VK_API_VERSION_1_3);
+  // Multiview is core since 1.1 and required by 1.3 drivers; the renderer depends on it.
+  EXPECT_TRUE(device().features().multiview);
+  EXPECT_TRUE(device().features().maintenance4);  // mandatory in 1.3; shaders rely on it
+  EXPECT_GT(device().memory_properties().memoryTypeCount, 0u);
+  EXPECT_NO_THROW(device().wait_idle());
+}
+
+TEST_F(Devices, AnExplicitIndexOpensThatDevice) {
+  const std::uint32_t index = device().info().index;
+  Device again(gpu().instance(), {.index = index});
+  EXPECT_EQ(again.info().index, index);
+  EXPECT_EQ(again.info().name, device().info().name);
+}
+
+TEST(DeviceIndex, NinetyNineIsOutOfRange) {
+  try {
+    Context context({.validation = true, .device_index = 99u});
+    FAIL() << "device 99 was opened";
+  } catch (const GpuError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("Vulkan device 99 does not exist: ", 0), 0u) << message;
+    EXPECT_NE(message.find("found (0: "), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "one line: " << message;
+  }
+}
+
+TEST(DeviceIndex, NoDriverAtAllIsOneClearLine) {
+  // The loader reads its driver list from these variables at each vkCreateInstance; pointing
+  // both spellings at nothing is a machine without Vulkan drivers.
+  ScopedEnv old_name("VK_ICD_FILENAMES", "/nonexistent/ddish_no_driver.json");
+  ScopedEnv new_name("VK_DRIVER_FILES", "/nonexistent/ddish_no_driver.json");
+  try {
+    Context context;
+    FAIL() << "a Vulkan device was opened without a driver";
+  } catch (const GpuError& e) {
+    EXPECT_STREQ(e.what(),
+                 "no Vulkan driver found (install mesa-vulkan-drivers for the CPU device)");
+  }
+}
+
+}  // namespace
+}  // namespace ddish::gpu::test
