@@ -25,9 +25,14 @@ struct Texture {
   std::vector<std::uint8_t> rgba8;  // width * height * 4 bytes
 };
 
+// How texture coordinates outside [0, 1] wrap (the glTF sampler's wrapS / wrapT).
+enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
+
 struct TextureSlot {
   int texture = -1;   // index into Scene::textures, -1 when the slot is empty
   int texcoord = 0;   // which UV set; ddish loads UV0 only and rejects others
+  Wrap wrap_s = Wrap::Repeat;
+  Wrap wrap_t = Wrap::Repeat;
   explicit operator bool() const { return texture >= 0; }
 };
 
@@ -148,6 +153,9 @@ struct Scene {
   std::vector<Animation> animations;
   Sidecar sidecar;
   double time = 0.0;  // the time the scene is posed at
+  // What the loader skipped but could still load (points/lines, orthographic cameras, ...),
+  // one line each, for `ddish info`.
+  std::vector<std::string> warnings;
 
   // Poses the scene at time t (seconds): evaluates every animation, then recomputes node world
   // transforms, instance transforms, light and camera placements. Returns the indices of the

@@ -1,0 +1,179 @@
+// `ddish info SCENE`: what a scene holds and what the renderer will leave out for it.
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "scene/features.h"
+#include "scene/gltf_loader.h"
+
+namespace ddish::app {
+
+namespace {
+
+struct InfoOptions {
+  std::string scene;
+  bool json = false;
+  bool decode = false;
+};
+
+const char* light_type(scene::LightType t) {
+  switch (t) {
+    case scene::LightType::Directional:
+      return "directional";
+    case scene::LightType::Point:
+      return "point";
+    case scene::LightType::Spot:
+      return "spot";
+  }
+  return "?";
+}
+
+nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
+                       const scene::RenderPlan& plan, double seconds) {
+  using nlohmann::json;
+  json j;
+  j["path"] = s.path;
+  j["load_seconds"] = seconds;
+  j["triangles"] = f.triangles;
+  j["instances"] = f.instances;
+  j["meshes"] = f.meshes;
+  j["materials"] = s.materials.size();
+  j["textures"] = s.textures.size();
+  j["lights"] = json::array();
+  for (const auto& l : s.lights)
+    j["lights"].push_back({{"name", l.name},
+                           {"type", light_type(l.type)},
+                           {"color", vec(l.color)},
+                           {"intensity", l.intensity},
+                           {"position", vec(l.position)},
+                           {"direction", vec(l.direction)}});
+  j["cameras"] = json::array();
+  for (const auto& c : s.cameras)
+    j["cameras"].push_back({{"name", c.name},
+                            {"yfov", c.yfov},
+                            {"eye", vec(c.eye)},
+                            {"forward", vec(c.forward)},
+                            {"up", vec(c.up)}});
+  const scene::Camera* cam = s.default_camera();
+  j["default_camera"] = cam ? json(cam->name) : json(nullptr);
+  j["animations"] = json::array();
+  for (const auto& a : s.animations)
+    j["animations"].push_back(
+        {{"name", a.name}, {"channels", a.channels.size()}, {"duration", a.duration()}});
+  j["bounds"] = f.bounds.empty() ? json(nullptr)
+                                 : json{{"min", vec(f.bounds.min)}, {"max", vec(f.bounds.max)}};
+  j["environment"] = vec(f.environment);
+  json grid = json::object();
+  if (s.sidecar.probe_counts) {
+    const glm::ivec3& c = *s.sidecar.probe_counts;
+    grid["counts"] = {c.x, c.y, c.z};
+  }
+  if (s.sidecar.probe_bounds)
+    grid["bounds"] = {{"min", vec(s.sidecar.probe_bounds->min)},
+                      {"max", vec(s.sidecar.probe_bounds->max)}};
+  j["probe_grid"] = grid;
+  j["features"] = {{"glossy_materials", f.glossy_materials},
+                   {"metal_materials", f.metal_materials},
+                   {"textured_materials", f.textured_materials},
+                   {"normal_mapped_materials", f.normal_mapped_materials},
+                   {"masked_materials", f.masked_materials},
+                   {"blended_materials", f.blended_materials},
+                   {"double_sided_materials", f.double_sided_materials},
+                   {"emissive_materials", f.emissive_materials},
+                   {"directional_lights", f.directional_lights},
+                   {"point_lights", f.point_lights},
+                   {"spot_lights", f.spot_lights},
+                   {"animated", f.animations > 0}};
+  j["left_out"] = json::array();
+  for (const auto& item : plan.left_out)
+    j["left_out"].push_back({{"what", item.what}, {"why", item.why}});
+  j["warnings"] = s.warnings;
+  return j;
+}
+
+void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scene::RenderPlan& plan,
+                double seconds) {
+  fmt::print("{}  (loaded in {:.2f} s)\n", s.path, seconds);
+  fmt::print("  triangles   {} (after instancing)\n", f.triangles);
+  fmt::print("  instances   {} of {} meshes\n", f.instances, f.meshes);
+  fmt::print("  materials   {} ({} used)\n", s.materials.size(), f.materials_used);
+  fmt::print("  textures    {} ({} used)\n", s.textures.size(), f.textures_used);
+  fmt::print("  lights      {} directional, {} point, {} spot\n", f.directional_lights,
+             f.point_lights, f.spot_lights);
+  for (const auto& l : s.lights)
+    fmt::print("    {:<12} {:<11} intensity {:g}, colour ({:g}, {:g}, {:g})\n", l.name,
+               light_type(l.type), l.intensity, l.color.r, l.color.g, l.color.b);
+  const scene::Camera* def = s.default_camera();
+  fmt::print("  cameras     {}{}\n", s.cameras.size(),
+             def ? fmt::format(" (default {})", def->name) : std::string());
+  for (const auto& c : s.cameras)
+    fmt::print(
+        "    {:<12} eye ({:.2f}, {:.2f}, {:.2f}) forward ({:.2f}, {:.2f}, {:.2f}) fov {:.1f} deg\n",
+        c.name, c.eye.x, c.eye.y, c.eye.z, c.forward.x, c.forward.y, c.forward.z,
+        glm::degrees(c.yfov));
+  fmt::print("  animations  {}", f.animations);
+  if (f.animations) fmt::print(" ({:.2f} s)", f.animation_duration);
+  fmt::print("\n");
+  if (f.bounds.empty())
+    fmt::print("  bounds      empty\n");
+  else
+    fmt::print("  bounds      ({:.3f}, {:.3f}, {:.3f}) .. ({:.3f}, {:.3f}, {:.3f})\n",
+               f.bounds.min.x, f.bounds.min.y, f.bounds.min.z, f.bounds.max.x, f.bounds.max.y,
+               f.bounds.max.z);
+  fmt::print("  environment ({:g}, {:g}, {:g}) radiance\n", f.environment.r, f.environment.g,
+             f.environment.b);
+  if (s.sidecar.probe_counts) {
+    const glm::ivec3& c = *s.sidecar.probe_counts;
+    fmt::print("  probe grid  {} x {} x {} = {} probes{}\n", c.x, c.y, c.z, c.x * c.y * c.z,
+               s.sidecar.probe_bounds ? " (sidecar bounds)" : " (scene bounds)");
+  } else {
+    fmt::print("  probe grid  automatic (no sidecar counts)\n");
+  }
+  fmt::print("features\n");
+  fmt::print(
+      "  glossy {}, metal {}, textured {}, normal-mapped {}, masked {}, blended {}, "
+      "double-sided {}, emissive {} (materials used)\n",
+      f.glossy_materials, f.metal_materials, f.textured_materials, f.normal_mapped_materials,
+      f.masked_materials, f.blended_materials, f.double_sided_materials, f.emissive_materials);
+  fmt::print("left out\n");
+  if (plan.left_out.empty()) fmt::print("  nothing: the scene uses every pass\n");
+  for (const auto& item : plan.left_out) fmt::print("  {}: {}\n", item.what, item.why);
+  for (const auto& w : s.warnings) fmt::print("warning: {}\n", w);
+}
+
+Action make_info(CLI::App& root) {
+  auto opts = std::make_shared<InfoOptions>();
+  CLI::App* cmd = root.add_subcommand("info", "scene summary, features, what will be left out");
+  cmd->add_option("scene", opts->scene, "glTF 2.0 scene (.gltf or .glb)")->required();
+  cmd->add_flag("--json", opts->json, "machine-readable output");
+  cmd->add_flag("--decode-textures", opts->decode,
+                "decode every texture (slower; checks pixel data, not only image headers)");
+  return [opts]() {
+    scene::LoadOptions load;
+    load.decode_textures = opts->decode;
+    auto start = std::chrono::steady_clock::now();
+    scene::Scene s = scene::load_scene(opts->scene, load);
+    double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    scene::SceneFeatures f = scene::analyze(s);
+    scene::RenderPlan plan = scene::make_plan(f);
+    if (opts->json)
+      fmt::print("{}\n", to_json(s, f, plan, seconds).dump(2));
+    else
+      print_text(s, f, plan, seconds);
+    return 0;
+  };
+}
+
+}  // namespace
+
+DDISH_COMMAND(10, make_info);
+
+}  // namespace ddish::app

@@ -1,0 +1,138 @@
+#include "probes/probe_tracer.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "probes/fibonacci.h"
+#include "sh/projection.h"
+
+namespace ddish::probes {
+
+void check_update_options(const UpdateOptions& options) {
+  if (options.samples == 0)
+    throw std::invalid_argument("probe samples must be at least 1");
+  check_hysteresis(options.hysteresis);
+  if (!(options.backface_threshold >= 0.0f && options.backface_threshold <= 1.0f))
+    throw std::invalid_argument("back-face threshold must be in [0, 1], got " +
+                                std::to_string(options.backface_threshold));
+}
+
+ProbeTracer::ProbeTracer(const RadianceSource& source, const UpdateOptions& options)
+    : source_(source), options_(options) {
+  check_update_options(options);
+}
+
+void ProbeTracer::set_options(const UpdateOptions& options) {
+  check_update_options(options);
+  options_ = options;
+}
+
+std::uint32_t ProbeTracer::trace_probe(const ProbeVolume& volume, std::uint32_t probe,
+                                       std::uint64_t frame, sh::ShRgb& estimate,
+                                       std::uint64_t* invalid) const {
+  const std::uint32_t n = options_.samples;
+  // Each lattice direction stands for an equal share 4π/N of the sphere.
+  const float weight = sh::uniform_sphere_weight(n);
+
+  // The probe's own stream for this update: independent of the thread that runs it.
+  trace::Sampler sampler(options_.seed, probe, frame);
+  const glm::mat3 rotation = random_rotation(sampler);
+  const glm::vec3 origin = volume.grid().position(probe);
+  // Each ray stands for a cone of solid angle 4π/N: textures are looked up at that footprint's
+  // mip level, which is also what the probe's SH can resolve.
+  const float cone_spread = std::sqrt(weight);
+
+  sh::ShProjector projector(volume.sh_order());
+  std::uint32_t backfaces = 0;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    trace::Ray ray;
+    ray.origin = origin;
+    ray.cone_spread = cone_spread;
+    ray.direction = glm::normalize(rotation * fibonacci_direction(i, n));
+    trace::PathSample s = source_.trace_path(ray, sampler);
+    if (s.hit && s.backface) ++backfaces;
+    const glm::vec3 L = s.radiance;
+    if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) {
+      // One NaN would poison the running average for good; drop the path and report it.
+      if (invalid) ++*invalid;
+      continue;
+    }
+    projector.add(ray.direction, L, weight);
+  }
+  estimate = projector.result();
+  return backfaces;
+}
+
+UpdateStats ProbeTracer::update(ProbeVolume& volume) const {
+  std::vector<std::uint32_t> all(volume.probe_count());
+  std::iota(all.begin(), all.end(), 0u);
+  return update(volume, all);
+}
+
+UpdateStats ProbeTracer::update(ProbeVolume& volume, std::span<const std::uint32_t> probes) const {
+  // Only active probes are traced, each once (two tasks on one probe would race): inactive and
+  // repeated ones are left out before any work is split.
+  std::vector<std::uint32_t> work;
+  work.reserve(probes.size());
+  std::vector<bool> listed(volume.probe_count(), false);
+  for (std::uint32_t p : probes) {
+    if (p >= volume.probe_count())
+      throw std::out_of_range("probe index " + std::to_string(p) + " outside a volume of " +
+                              std::to_string(volume.probe_count()) + " probes");
+    if (volume.state(p).active() && !listed[p]) work.push_back(p);
+    listed[p] = true;
+  }
+
+  volume.begin_update();
+  UpdateStats stats;
+  stats.frame = volume.frame();
+  stats.probes_traced = std::uint32_t(work.size());
+  stats.paths = std::uint64_t(work.size()) * options_.samples;
+
+  const std::uint64_t rays_before = source_.rays_traced();
+  const auto start = std::chrono::steady_clock::now();
+  std::atomic<std::uint32_t> newly_inactive{0};
+  std::atomic<std::uint64_t> invalid{0};
+
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 1),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+    sh::ShRgb estimate(volume.sh_order());
+    std::uint64_t local_invalid = 0;
+    for (std::size_t w = range.begin(); w != range.end(); ++w) {
+      const std::uint32_t p = work[w];
+      std::uint32_t backfaces =
+          trace_probe(volume, p, stats.frame, estimate, &local_invalid);
+      ProbeState& state = volume.state(p);
+      if (state.unclassified()) {
+        Classification c = classify(backfaces, options_.samples, options_.backface_threshold);
+        state.backface_fraction = c.backface_fraction;
+        state.flags = std::uint8_t(state.flags & ~kProbeUnclassified);
+        if (c.inside_geometry) {
+          volume.deactivate(p, true);
+          state.age = 0;
+          newly_inactive.fetch_add(1, std::memory_order_relaxed);
+          continue;
+        }
+      }
+      // Each probe's state and coefficients belong to exactly one task: no locking needed.
+      volume.accumulate(p, estimate, options_.samples, options_.hysteresis);
+    }
+    invalid.fetch_add(local_invalid, std::memory_order_relaxed);
+  });
+
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats.rays = source_.rays_traced() - rays_before;
+  stats.newly_inactive = newly_inactive.load();
+  stats.invalid_samples = invalid.load();
+  return stats;
+}
+
+}  // namespace ddish::probes

@@ -1,0 +1,87 @@
+#include "probes/probe_volume.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "probes/accumulation.h"
+
+namespace ddish::probes {
+
+void check_sh_order(int order) {
+  if (order < 1 || order > 4)
+    throw std::invalid_argument("SH order must be 1, 2, 3 or 4, got " + std::to_string(order));
+}
+
+ProbeVolume::ProbeVolume(const ProbeGrid& grid, int sh_order)
+    : grid_(grid), order_(sh_order), coeff_count_(sh::coeff_count(sh_order)) {
+  check_sh_order(sh_order);
+  coeffs_.assign(std::size_t(grid.probe_count()) * std::size_t(coeff_count_), glm::vec3(0.0f));
+  states_.assign(grid.probe_count(), ProbeState{});
+}
+
+sh::ShRgb ProbeVolume::sh(std::uint32_t i) const {
+  sh::ShRgb out(order_);
+  std::span<const glm::vec3> avg = coefficients(i);
+  std::copy(avg.begin(), avg.end(), out.c.begin());
+  return out;
+}
+
+void ProbeVolume::set_sh(std::uint32_t i, const sh::ShRgb& coefficients_in) {
+  std::span<glm::vec3> avg = coefficients(i);
+  for (std::size_t j = 0; j < avg.size(); ++j)
+    avg[j] = int(j) < coefficients_in.count() ? coefficients_in.c[j] : glm::vec3(0.0f);
+}
+
+void ProbeVolume::accumulate(std::uint32_t i, const sh::ShRgb& estimate, std::uint64_t samples,
+                             float hysteresis) {
+  ProbeState& s = states_[i];
+  s.updates += 1;
+  s.samples += samples;
+  s.age = 0;
+  const float w = blend_weight(s.updates, hysteresis);
+  std::span<glm::vec3> avg = coefficients(i);
+  for (std::size_t j = 0; j < avg.size(); ++j) {
+    const glm::vec3 e = int(j) < estimate.count() ? estimate.c[j] : glm::vec3(0.0f);
+    // w == 1 on the first update: assign, so the zero start leaves no trace at all.
+    avg[j] = w == 1.0f ? e : avg[j] + w * (e - avg[j]);
+  }
+}
+
+void ProbeVolume::deactivate(std::uint32_t i, bool inside_geometry) {
+  ProbeState& s = states_[i];
+  s.flags = std::uint8_t(inside_geometry ? kProbeInactive | kProbeInsideGeometry : kProbeInactive);
+  s.updates = 0;
+  s.samples = 0;
+  std::span<glm::vec3> avg = coefficients(i);
+  std::fill(avg.begin(), avg.end(), glm::vec3(0.0f));
+}
+
+void ProbeVolume::reset_classification() {
+  for (ProbeState& s : states_) {
+    if (s.active()) {
+      s.flags = std::uint8_t(s.flags | kProbeUnclassified);  // keeps its average
+    } else {
+      const std::uint32_t age = s.age;
+      s = ProbeState{};  // a fresh probe: zero average (deactivate zeroed it), unclassified
+      s.age = age;
+    }
+  }
+}
+
+void ProbeVolume::begin_update() {
+  ++frame_;
+  for (ProbeState& s : states_) ++s.age;
+}
+
+std::uint32_t ProbeVolume::active_count() const {
+  return std::uint32_t(std::count_if(states_.begin(), states_.end(),
+                                     [](const ProbeState& s) { return s.active(); }));
+}
+
+std::uint32_t ProbeVolume::inside_geometry_count() const {
+  return std::uint32_t(std::count_if(states_.begin(), states_.end(),
+                                     [](const ProbeState& s) { return s.inside_geometry(); }));
+}
+
+}  // namespace ddish::probes

@@ -1,0 +1,176 @@
+// glTF materials, KHR_lights_punctual lights and cameras to the scene model.
+#include <algorithm>
+#include <cmath>
+
+#include "scene/gltf_internal.h"
+
+namespace ddish::scene::gltf {
+
+namespace {
+
+float finite_or(double v, float fallback) { return std::isfinite(v) ? float(v) : fallback; }
+
+template <int N>
+glm::vec<N, float> vector_or(const Context& ctx, const std::vector<double>& v,
+                             glm::vec<N, float> fallback, const std::string& what) {
+  if (v.empty()) return fallback;
+  if (v.size() != std::size_t(N))
+    ctx.fail(what + " has " + std::to_string(v.size()) + " values, expected " + std::to_string(N));
+  glm::vec<N, float> out;
+  for (int i = 0; i < N; ++i) {
+    if (!std::isfinite(v[std::size_t(i)])) ctx.fail(what + " is not finite");
+    out[i] = float(v[std::size_t(i)]);
+  }
+  return out;
+}
+
+Wrap wrap_of(int gl) {
+  switch (gl) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+      return Wrap::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+      return Wrap::MirroredRepeat;
+    default:
+      return Wrap::Repeat;
+  }
+}
+
+// Maps a glTF texture reference to the decoded image it samples (Scene::textures are images).
+TextureSlot slot(const Context& ctx, int texture, int texcoord, const std::string& what) {
+  TextureSlot s;
+  if (texture < 0) return s;
+  const auto& m = ctx.model;
+  if (std::size_t(texture) >= m.textures.size())
+    ctx.fail(what + ": texture " + std::to_string(texture) + " does not exist");
+  int source = m.textures[std::size_t(texture)].source;
+  if (source < 0 || std::size_t(source) >= m.images.size())
+    ctx.fail(what + ": texture " + std::to_string(texture) + " has no valid image source");
+  if (texcoord != 0)
+    ctx.fail(what + ": uses TEXCOORD_" + std::to_string(texcoord) +
+             ", only TEXCOORD_0 is supported");
+  s.texture = source;
+  s.texcoord = 0;
+  int sampler = m.textures[std::size_t(texture)].sampler;
+  if (sampler >= 0) {
+    if (std::size_t(sampler) >= m.samplers.size())
+      ctx.fail(what + ": sampler " + std::to_string(sampler) + " does not exist");
+    s.wrap_s = wrap_of(m.samplers[std::size_t(sampler)].wrapS);
+    s.wrap_t = wrap_of(m.samplers[std::size_t(sampler)].wrapT);
+  }
+  return s;
+}
+
+}  // namespace
+
+double extension_number(const tinygltf::ExtensionMap& extensions, const std::string& ext,
+                        const std::string& key, double fallback) {
+  auto it = extensions.find(ext);
+  if (it == extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
+  const tinygltf::Value& v = it->second.Get(key);
+  return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+void load_materials(const Context& ctx, Scene& scene) {
+  for (std::size_t i = 0; i < ctx.model.materials.size(); ++i) {
+    const auto& gm = ctx.model.materials[i];
+    Material mat;
+    mat.name = gm.name.empty() ? "material" + std::to_string(i) : gm.name;
+    const std::string what = "material '" + mat.name + "'";
+    const auto& pbr = gm.pbrMetallicRoughness;
+    mat.base_color =
+        vector_or<4>(ctx, pbr.baseColorFactor, glm::vec4(1.0f), what + " baseColorFactor");
+    mat.metallic = glm::clamp(finite_or(pbr.metallicFactor, 1.0f), 0.0f, 1.0f);
+    mat.roughness = glm::clamp(finite_or(pbr.roughnessFactor, 1.0f), 0.0f, 1.0f);
+    mat.emissive = vector_or<3>(ctx, gm.emissiveFactor, glm::vec3(0.0f), what + " emissiveFactor");
+    mat.emissive_strength =
+        std::max(0.0f, finite_or(extension_number(gm.extensions, "KHR_materials_emissive_strength",
+                                                  "emissiveStrength", 1.0),
+                                 1.0f));
+    mat.normal_scale = finite_or(gm.normalTexture.scale, 1.0f);
+    mat.occlusion_strength = glm::clamp(finite_or(gm.occlusionTexture.strength, 1.0f), 0.0f, 1.0f);
+    if (gm.alphaMode == "MASK")
+      mat.alpha_mode = AlphaMode::Mask;
+    else if (gm.alphaMode == "BLEND")
+      mat.alpha_mode = AlphaMode::Blend;
+    else if (gm.alphaMode == "OPAQUE" || gm.alphaMode.empty())
+      mat.alpha_mode = AlphaMode::Opaque;
+    else
+      ctx.fail(what + ": unknown alphaMode '" + gm.alphaMode + "'");
+    mat.alpha_cutoff = std::max(0.0f, finite_or(gm.alphaCutoff, 0.5f));
+    mat.double_sided = gm.doubleSided;
+    mat.base_color_texture = slot(ctx, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                                  what + " baseColorTexture");
+    mat.metallic_roughness_texture =
+        slot(ctx, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+             what + " metallicRoughnessTexture");
+    mat.normal_texture =
+        slot(ctx, gm.normalTexture.index, gm.normalTexture.texCoord, what + " normalTexture");
+    mat.occlusion_texture = slot(ctx, gm.occlusionTexture.index, gm.occlusionTexture.texCoord,
+                                 what + " occlusionTexture");
+    mat.emissive_texture =
+        slot(ctx, gm.emissiveTexture.index, gm.emissiveTexture.texCoord, what + " emissiveTexture");
+    scene.materials.push_back(std::move(mat));
+  }
+}
+
+Light make_light(const Context& ctx, int index, int node) {
+  const auto& m = ctx.model;
+  if (index < 0 || std::size_t(index) >= m.lights.size())
+    ctx.fail("node " + std::to_string(node) + ": KHR_lights_punctual light " +
+             std::to_string(index) + " does not exist");
+  const auto& gl = m.lights[std::size_t(index)];
+  Light light;
+  light.name = gl.name.empty() ? m.nodes[std::size_t(node)].name : gl.name;
+  const std::string what = "light '" + light.name + "'";
+  if (gl.type == "directional")
+    light.type = LightType::Directional;
+  else if (gl.type == "point")
+    light.type = LightType::Point;
+  else if (gl.type == "spot")
+    light.type = LightType::Spot;
+  else
+    ctx.fail(what + ": unknown light type '" + gl.type + "'");
+  light.color = vector_or<3>(ctx, gl.color, glm::vec3(1.0f), what + " color");
+  light.intensity = finite_or(gl.intensity, 1.0f);
+  light.range = std::max(0.0f, finite_or(gl.range, 0.0f));
+  if (light.type == LightType::Spot) {
+    light.inner_cone = finite_or(gl.spot.innerConeAngle, 0.0f);
+    light.outer_cone = finite_or(gl.spot.outerConeAngle, 0.785398163f);
+    if (light.inner_cone < 0.0f || light.outer_cone <= light.inner_cone ||
+        light.outer_cone > 1.5707964f)
+      ctx.fail(what + ": spot cone angles must satisfy 0 <= inner < outer <= pi/2");
+  }
+  if (light.intensity < 0.0f) ctx.fail(what + ": negative intensity");
+  light.node = node;
+  return light;
+}
+
+bool make_camera(const Context& ctx, int index, int node, Scene& scene, Camera& out) {
+  const auto& m = ctx.model;
+  if (index < 0 || std::size_t(index) >= m.cameras.size())
+    ctx.fail("node " + std::to_string(node) + ": camera " + std::to_string(index) +
+             " does not exist");
+  const auto& gc = m.cameras[std::size_t(index)];
+  const std::string& node_name = m.nodes[std::size_t(node)].name;
+  // The sidecar names the default camera by node, so the node name wins.
+  out.name = !node_name.empty() ? node_name
+             : !gc.name.empty() ? gc.name
+                                : "camera" + std::to_string(index);
+  if (gc.type != "perspective") {
+    scene.warnings.push_back("camera '" + out.name + "': only perspective cameras are supported");
+    return false;
+  }
+  const auto& p = gc.perspective;
+  if (!(p.yfov > 0.0 && p.yfov < 3.14159) || !(p.znear > 0.0))
+    ctx.fail("camera '" + out.name + "': yfov must lie in (0, pi) and znear must be positive");
+  out.yfov = float(p.yfov);
+  if (p.aspectRatio > 0.0) out.aspect = float(p.aspectRatio);
+  out.znear = float(p.znear);
+  // zfar 0 means an infinite projection in glTF; ddish uses a far plane, so keep its default
+  // unless that would lie in front of the near plane.
+  out.zfar = p.zfar > p.znear ? float(p.zfar) : std::max(out.zfar, 1000.0f * out.znear);
+  out.node = node;
+  return true;
+}
+
+}  // namespace ddish::scene::gltf

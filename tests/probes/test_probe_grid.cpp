@@ -1,0 +1,82 @@
+// Volume layout: index <-> cell <-> position, spacing fitting, and the grid coordinate mapping.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "probes/probe_grid.h"
+
+using ddish::probes::ProbeGrid;
+using ddish::scene::Aabb;
+
+TEST(ProbeGrid, IndexCellPositionRoundTrip) {
+  ProbeGrid grid(Aabb{{-2.0f, 0.0f, 1.0f}, {6.0f, 3.0f, 5.0f}}, {4, 3, 5});
+  ASSERT_EQ(grid.probe_count(), 60u);
+  EXPECT_EQ(grid.spacing(), glm::vec3(2.0f, 1.0f, 0.8f));
+  for (std::uint32_t i = 0; i < grid.probe_count(); ++i) {
+    glm::ivec3 c = grid.cell(i);
+    ASSERT_TRUE(grid.contains(c));
+    ASSERT_EQ(grid.index(c), i);
+    glm::vec3 g = grid.grid_coordinate(grid.position(i));
+    for (int a = 0; a < 3; ++a) ASSERT_NEAR(g[a], float(c[a]), 1e-5f);
+  }
+  // x fastest, then y, then z.
+  EXPECT_EQ(grid.index({1, 0, 0}), 1u);
+  EXPECT_EQ(grid.index({0, 1, 0}), 4u);
+  EXPECT_EQ(grid.index({0, 0, 1}), 12u);
+  // Inset by half a cell from the bounds.
+  EXPECT_EQ(grid.position(glm::ivec3(0)), glm::vec3(-1.0f, 0.5f, 1.4f));
+  glm::vec3 last = grid.position(glm::ivec3(3, 2, 4));
+  EXPECT_NEAR(last.x, 5.0f, 1e-6f);
+  EXPECT_NEAR(last.y, 2.5f, 1e-6f);
+  EXPECT_NEAR(last.z, 4.6f, 1e-6f);
+}
+
+TEST(ProbeGrid, SpacingFitCoversBounds) {
+  Aabb bounds{{-10.0f, -1.0f, 0.0f}, {13.5f, 4.0f, 0.3f}};
+  for (float target : {0.25f, 0.7f, 1.0f, 3.0f, 100.0f}) {
+    ProbeGrid grid = ProbeGrid::fit_spacing(bounds, target);
+    for (int a = 0; a < 3; ++a) {
+      float extent = bounds.extent()[a];
+      int n = grid.counts()[a];
+      ASSERT_GE(n, 1);
+      // The actual spacing never exceeds the target, and one probe fewer would.
+      EXPECT_LE(grid.spacing()[a], target * (1.0f + 1e-6f)) << "axis " << a;
+      if (n > 1) {
+        EXPECT_GT(extent / float(n - 1), target) << "axis " << a;
+      }
+      // The probes' cells tile the bounds exactly: first and last probe half a cell inside.
+      glm::ivec3 lo(0), hi = grid.counts() - 1;
+      EXPECT_NEAR(grid.position(lo)[a] - 0.5f * grid.spacing()[a], bounds.min[a], 1e-4f);
+      EXPECT_NEAR(grid.position(hi)[a] + 0.5f * grid.spacing()[a], bounds.max[a], 1e-4f);
+    }
+  }
+  ProbeGrid g = ProbeGrid::fit_spacing(bounds, 1.0f);
+  EXPECT_EQ(g.counts(), glm::ivec3(24, 5, 1));
+}
+
+TEST(ProbeGrid, FlatBoundsAndSingleProbe) {
+  ProbeGrid grid(Aabb{{0.0f, 2.0f, 0.0f}, {4.0f, 2.0f, 4.0f}}, {2, 1, 2});
+  EXPECT_EQ(grid.spacing().y, 0.0f);
+  EXPECT_EQ(grid.position(glm::ivec3(1, 0, 1)), glm::vec3(3.0f, 2.0f, 3.0f));
+  EXPECT_EQ(grid.grid_coordinate({3.0f, 7.0f, 1.0f}), glm::vec3(1.0f, 0.0f, 0.0f));
+}
+
+TEST(ProbeGrid, RejectsBadInput) {
+  Aabb box{{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}};
+  EXPECT_THROW(ProbeGrid(box, {0, 1, 1}), std::invalid_argument);
+  EXPECT_THROW(ProbeGrid(box, {1, -3, 1}), std::invalid_argument);
+  EXPECT_THROW(ProbeGrid(Aabb{}, {1, 1, 1}), std::invalid_argument);
+  EXPECT_THROW(ProbeGrid(box, {4096, 4096, 4096}), std::invalid_argument);
+  EXPECT_THROW(ProbeGrid::fit_spacing(box, 0.0f), std::invalid_argument);
+  EXPECT_THROW(ProbeGrid::fit_spacing(box, -1.0f), std::invalid_argument);
+  EXPECT_THROW(ProbeGrid::fit_spacing(box, 1e-5f), std::invalid_argument);
+}
+
+TEST(ProbeGrid, AutomaticPlacement) {
+  ProbeGrid g = ProbeGrid::fit_auto(Aabb{{-15.0f, 0.0f, -7.0f}, {15.0f, 12.0f, 7.0f}});
+  EXPECT_EQ(g.counts(), glm::ivec3(16, 7, 8));
+  ProbeGrid cube = ProbeGrid::fit_auto(Aabb{{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}});
+  EXPECT_EQ(cube.counts(), glm::ivec3(16, 16, 16));
+  ProbeGrid point = ProbeGrid::fit_auto(Aabb{{1.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f}});
+  EXPECT_EQ(point.counts(), glm::ivec3(1));
+}
