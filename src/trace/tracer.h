@@ -25,6 +25,9 @@ struct Ray {
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit length
   float tmin = 0.0f;
   float tmax = std::numeric_limits<float>::infinity();
+  // Ray-cone spread angle (radians) of the footprint this ray stands for: a camera's pixel angle,
+  // or a probe's solid angle per sample as sqrt(4 pi / N). Selects texture mip levels; 0 = finest.
+  float cone_spread = 0.0f;
 };
 
 struct PathOptions {
@@ -45,6 +48,8 @@ struct PathSample {
 
 class Tracer {
  public:
+  // The scene must outlive the tracer: meshes and texture pixels are read in place, not copied
+  // (the tracer adds Embree's BVHs and the textures' smaller mip levels, one third more).
   Tracer(const scene::Scene& scene, const PathOptions& options = {});
   ~Tracer();
   Tracer(const Tracer&) = delete;
@@ -52,16 +57,19 @@ class Tracer {
 
   // Follows the scene posed at a new time: re-commits the moved instances and refreshes light
   // placements, without rebuilding geometry that did not move (scene::Scene::pose returns them).
+  // `scene` is the Scene object the tracer was built from; not while trace_path runs.
   void update(const scene::Scene& scene, std::span<const int> moved_instances);
 
   PathSample trace_path(const Ray& ray, Sampler& sampler) const;
 
   const PathOptions& options() const;
-  void set_options(const PathOptions& options);
+  void set_options(const PathOptions& options);  // not while trace_path runs
 
   // Rays cast so far (primary, bounce and shadow rays), for Mrays/s figures.
   std::uint64_t rays_traced() const;
   void reset_ray_count();
+  // Paths whose radiance came out NaN, infinite or negative; they return zero radiance instead.
+  std::uint64_t invalid_paths() const;
 
  private:
   struct Impl;

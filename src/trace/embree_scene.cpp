@@ -1,0 +1,230 @@
+#include "trace/embree_scene.h"
+
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "scene/scene.h"
+#include "trace/surface.h"
+#include "trace/texture_lookup.h"
+
+namespace ddish::trace {
+
+namespace {
+
+// RTCIntersectContext extended with what the filters need; Embree hands the filter the pointer
+// it was given, so the standard context must come first.
+struct FilterContext {
+  RTCIntersectContext rtc;
+  const RayQuery* query;
+};
+
+// A uniform number in [0, 1) from the ray's seed and the hit's identity (Blend transparency).
+float hash_uniform(std::uint32_t seed, std::uint32_t instance, std::uint32_t prim) {
+  std::uint64_t z = (static_cast<std::uint64_t>(seed) << 32) ^
+                    (static_cast<std::uint64_t>(instance) * 0x9E3779B1u) ^
+                    (static_cast<std::uint64_t>(prim) * 0x85EBCA77C2B2AE63ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<float>(z >> 40) * 0x1p-24f;
+}
+
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* geom = static_cast<const EmbreeScene::MeshGeometry*>(args->geometryUserPtr);
+  const auto* ctx = reinterpret_cast<const FilterContext*>(args->context);
+  const RayQuery& q = *ctx->query;
+  const scene::Material& mat = *geom->material;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const unsigned instance = RTCHitN_instID(args->hit, args->N, i, 0);
+    const auto prim = static_cast<int>(RTCHitN_primID(args->hit, args->N, i));
+    const float u = RTCHitN_u(args->hit, args->N, i);
+    const float v = RTCHitN_v(args->hit, args->N, i);
+    // Mip level from the cone at the hit; the obliquity term is left out here (the hit normal is
+    // not at hand), which selects a slightly sharper level than shading does at grazing angles.
+    float lod = static_cast<float>(q.fixed_mip_level);
+    if (q.fixed_mip_level < 0) {
+      lod = 0.0f;
+      const MipTexture* tex = geom->textures->get(mat.base_color_texture.texture);
+      if (tex != nullptr && instance != RTC_INVALID_GEOMETRY_ID) {
+        const float t = RTCRayN_tfar(args->ray, args->N, i);
+        const float width = q.cone_width + q.cone_spread * t;
+        const glm::mat4& xf = geom->owner->transform(static_cast<int>(instance)).object_to_world;
+        const float area = world_triangle(*geom->mesh, xf, prim).area();
+        lod = tex->lod_for_footprint(width, 1.0f, uv_area(*geom->mesh, prim), area);
+      }
+    }
+    const float alpha = alpha_at(mat, *geom->textures, *geom->mesh, prim, u, v, lod);
+    const bool keep = mat.alpha_mode == scene::AlphaMode::Mask
+                          ? alpha >= mat.alpha_cutoff
+                          : hash_uniform(q.alpha_seed, instance, static_cast<std::uint32_t>(prim)) < alpha;
+    if (!keep) args->valid[i] = 0;
+  }
+}
+
+void error_callback(void* user, RTCError code, const char* message) {
+  auto* last = static_cast<std::string*>(user);
+  *last = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
+}
+
+}  // namespace
+
+EmbreeScene::EmbreeScene(const scene::Scene& scene, const TextureSet& textures) {
+  device_ = rtcNewDevice(nullptr);
+  if (device_ == nullptr) throw std::runtime_error("cannot create an Embree device");
+  rtcSetDeviceErrorFunction(device_, error_callback, &error_);
+
+  mesh_data_.resize(scene.meshes.size());
+  mesh_scenes_.assign(scene.meshes.size(), nullptr);
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const scene::Mesh& mesh = scene.meshes[m];
+    const scene::Material& mat = scene.material_of(mesh);
+    mesh_data_[m] = {&mesh, &mat, &textures, this};
+    if (mesh.triangle_count() == 0 || mesh.positions.empty()) continue;
+
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    auto* verts = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      std::memcpy(verts + 3 * i, &mesh.positions[i], 3 * sizeof(float));
+    }
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangle_count()));
+    std::memcpy(idx, mesh.indices.data(), mesh.triangle_count() * 3 * sizeof(unsigned));
+    rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+    if (mat.alpha_mode != scene::AlphaMode::Opaque) {
+      rtcSetGeometryUserData(geom, &mesh_data_[m]);
+      rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
+      rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
+    }
+    rtcCommitGeometry(geom);
+
+    RTCScene s = rtcNewScene(device_);
+    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    rtcAttachGeometryByID(s, geom, 0);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(s);
+    mesh_scenes_[m] = s;
+  }
+
+  // The top level changes when instances move: a dynamic scene rebuilds fast over its (few
+  // hundred at most) instance boxes.
+  top_ = rtcNewScene(device_);
+  rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC);
+  rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_LOW);
+  instance_geoms_.assign(scene.instances.size(), nullptr);
+  transforms_.resize(scene.instances.size());
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const scene::Instance& inst = scene.instances[i];
+    transforms_[i] = InstanceTransform::from(inst.transform);
+    if (inst.mesh < 0 || static_cast<std::size_t>(inst.mesh) >= mesh_scenes_.size() ||
+        mesh_scenes_[static_cast<std::size_t>(inst.mesh)] == nullptr) {
+      continue;
+    }
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, mesh_scenes_[static_cast<std::size_t>(inst.mesh)]);
+    rtcSetGeometryTimeStepCount(g, 1);
+    rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, &transforms_[i].object_to_world[0][0]);
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(top_, g, static_cast<unsigned>(i));
+    instance_geoms_[i] = g;
+  }
+  rtcCommitScene(top_);
+  if (!error_.empty()) {
+    release();
+    throw std::runtime_error(error_);
+  }
+}
+
+EmbreeScene::~EmbreeScene() { release(); }
+
+void EmbreeScene::release() {
+  for (RTCGeometry& g : instance_geoms_) {
+    if (g != nullptr) rtcReleaseGeometry(g);
+    g = nullptr;
+  }
+  if (top_ != nullptr) rtcReleaseScene(top_);
+  top_ = nullptr;
+  for (RTCScene& s : mesh_scenes_) {
+    if (s != nullptr) rtcReleaseScene(s);
+    s = nullptr;
+  }
+  if (device_ != nullptr) rtcReleaseDevice(device_);
+  device_ = nullptr;
+}
+
+void EmbreeScene::update(const scene::Scene& scene, std::span<const int> moved) {
+  bool changed = false;
+  for (int i : moved) {
+    if (i < 0 || static_cast<std::size_t>(i) >= transforms_.size() ||
+        static_cast<std::size_t>(i) >= scene.instances.size()) {
+      continue;
+    }
+    const auto k = static_cast<std::size_t>(i);
+    transforms_[k] = InstanceTransform::from(scene.instances[k].transform);
+    if (instance_geoms_[k] == nullptr) continue;
+    rtcSetGeometryTransform(instance_geoms_[k], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                            &transforms_[k].object_to_world[0][0]);
+    rtcCommitGeometry(instance_geoms_[k]);
+    changed = true;
+  }
+  if (changed) rtcCommitScene(top_);
+}
+
+bool EmbreeScene::intersect(const Ray& ray, const RayQuery& query, Hit& hit) const {
+  FilterContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  ctx.query = &query;
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x;
+  rh.ray.org_y = ray.origin.y;
+  rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.direction.x;
+  rh.ray.dir_y = ray.direction.y;
+  rh.ray.dir_z = ray.direction.z;
+  rh.ray.tnear = ray.tmin;
+  rh.ray.tfar = ray.tmax;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  for (unsigned& id : rh.hit.instID) id = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(top_, &ctx.rtc, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) return false;
+  hit.instance = static_cast<int>(rh.hit.instID[0]);
+  hit.prim = static_cast<int>(rh.hit.primID);
+  hit.t = rh.ray.tfar;
+  hit.u = rh.hit.u;
+  hit.v = rh.hit.v;
+  return true;
+}
+
+bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax,
+                           const RayQuery& query) const {
+  FilterContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  ctx.query = &query;
+  RTCRay r;
+  r.org_x = origin.x;
+  r.org_y = origin.y;
+  r.org_z = origin.z;
+  r.dir_x = direction.x;
+  r.dir_y = direction.y;
+  r.dir_z = direction.z;
+  r.tnear = tmin;
+  r.tfar = tmax;
+  r.time = 0.0f;
+  r.mask = 0xFFFFFFFFu;
+  r.id = 0;
+  r.flags = 0;
+  rtcOccluded1(top_, &ctx.rtc, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace ddish::trace

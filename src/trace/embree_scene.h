@@ -1,0 +1,95 @@
+// The Embree 3 view of a scene: one triangle geometry per scene::Mesh, each in its own RTCScene,
+// placed in a top-level scene by one RTC_GEOMETRY_TYPE_INSTANCE per scene::Instance (instances
+// share geometry; the instance geometry's ID is the scene's instance index). Moving instances
+// only re-sets their transforms and re-commits the top level.
+//
+// Alpha: AlphaMode::Mask materials get intersection and occlusion filter functions that reject
+// hits whose base-colour alpha (factor × texture at the hit's UV) is below the cutoff.
+// AlphaMode::Blend is stochastic transparency: a hit is kept with probability alpha, decided by
+// hashing a per-ray random seed with the hit's instance and triangle, so the expected transmission
+// equals what blending a single layer gives, shadows included, and a seed replays exactly.
+// Layers decide independently (the hash includes the triangle), so k layers of alpha a transmit
+// (1-a)^k; a ray exactly through an edge shared by two triangles meets it twice (measure zero).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+#include "trace/surface.h"
+#include "trace/tracer.h"
+
+namespace ddish::scene {
+struct Scene;
+struct Mesh;
+struct Material;
+}  // namespace ddish::scene
+
+namespace ddish::trace {
+
+class TextureSet;
+
+struct Hit {
+  int instance = -1;  // index into Scene::instances
+  int prim = -1;      // triangle of the instance's mesh
+  float t = 0.0f;
+  float u = 0.0f;  // barycentrics: p = (1-u-v) p0 + u p1 + v p2
+  float v = 0.0f;
+};
+
+// What alpha-tested lookups need to know about the ray: its random seed (Blend) and its cone
+// (the mip level of the alpha texture).
+struct RayQuery {
+  std::uint32_t alpha_seed = 0;
+  float cone_width = 0.0f;   // metres at the ray origin
+  float cone_spread = 0.0f;  // radians
+  int fixed_mip_level = -1;
+};
+
+class EmbreeScene {
+ public:
+  // The scene and the texture set must outlive this object (meshes and textures are read at
+  // filter time, not copied).
+  EmbreeScene(const scene::Scene& scene, const TextureSet& textures);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  // Re-reads the transforms of `moved` instances and re-commits the top level. Not concurrent
+  // with intersect/occluded.
+  void update(const scene::Scene& scene, std::span<const int> moved);
+
+  bool intersect(const Ray& ray, const RayQuery& query, Hit& hit) const;
+  // True when something blocks the segment origin + t·direction, t in (tmin, tmax).
+  bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax,
+                const RayQuery& query) const;
+
+  const InstanceTransform& transform(int instance) const {
+    return transforms_[static_cast<std::size_t>(instance)];
+  }
+
+  // Per-mesh data the filter functions read (public so the C callbacks can name it).
+  struct MeshGeometry {
+    const scene::Mesh* mesh = nullptr;
+    const scene::Material* material = nullptr;
+    const TextureSet* textures = nullptr;
+    const EmbreeScene* owner = nullptr;
+  };
+
+ private:
+  void release();
+
+  RTCDevice device_ = nullptr;
+  RTCScene top_ = nullptr;
+  std::vector<RTCScene> mesh_scenes_;          // per scene::Mesh; null for empty meshes
+  std::vector<RTCGeometry> instance_geoms_;    // per scene::Instance; null when not placed
+  std::vector<InstanceTransform> transforms_;  // per scene::Instance
+  std::vector<MeshGeometry> mesh_data_;        // per scene::Mesh (stable addresses: sized once)
+  std::string error_;                          // the last error Embree reported
+};
+
+}  // namespace ddish::trace
