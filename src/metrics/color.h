@@ -1,0 +1,23 @@
+// Display encoding shared by the PNG writer and the display-referred metrics (PSNR, SSIM):
+// linear values are clamped to [0, 1] and encoded with the sRGB transfer function (IEC 61966-2-1),
+// without any tone curve, so "display values" mean exactly what an sRGB PNG of the image holds.
+#pragma once
+
+#include <glm/glm.hpp>
+
+namespace ddish::metrics {
+
+// sRGB opto-electronic transfer function for one linear value in [0, 1] (not clamped).
+float srgb_encode(float linear);
+// Its inverse: an sRGB-encoded value in [0, 1] back to linear.
+float srgb_decode(float encoded);
+
+// The display value of a linear colour: each channel clamped to [0, 1], then sRGB-encoded.
+// NaN stays NaN, so a broken image shows up in the metrics instead of being hidden.
+glm::vec3 display_value(const glm::vec3& linear);
+
+// Rec. 709 / sRGB luma weights (0.2126, 0.7152, 0.0722) applied to whatever values it is given;
+// SSIM applies it to display values.
+float luminance(const glm::vec3& rgb);
+
+}  // namespace ddish::metrics

@@ -1,0 +1,31 @@
+// Reading and writing Images with OpenImageIO (DESIGN.md: PNG for display, EXR for linear data).
+//
+// Files hold either linear or display-encoded values, told apart by their pixel type: floating
+// point files (EXR, HDR, PFM, float TIFF) are linear and read as they are; integer files (PNG,
+// JPEG, 8/16-bit TIFF, PPM) hold sRGB-encoded values and are decoded to linear on reading. So an
+// Image is always linear in memory, whichever kind of file it came from, and a PNG written by
+// write_png reads back as the same display values.
+#pragma once
+
+#include <filesystem>
+
+#include "metrics/image.h"
+
+namespace ddish::metrics {
+
+// Reads any image OpenImageIO understands. One-channel (grey) and grey+alpha files are expanded
+// to RGB; alpha and further channels are ignored. Throws std::runtime_error with a one-line
+// message naming the file when it is missing or unreadable.
+Image read_image(const std::filesystem::path& path);
+
+// Linear 32-bit float RGB OpenEXR (ZIP compressed): values, NaN and infinities survive exactly.
+void write_exr(const std::filesystem::path& path, const Image& image);
+
+// 8-bit RGB PNG of the display values (clamped to [0, 1], sRGB-encoded, rounded to nearest).
+void write_png(const std::filesystem::path& path, const Image& image);
+
+// Chooses by extension (case-insensitive): ".exr" -> write_exr, ".png" -> write_png; anything
+// else throws std::invalid_argument.
+void write_image(const std::filesystem::path& path, const Image& image);
+
+}  // namespace ddish::metrics
