@@ -1,0 +1,244 @@
+// Forward pass, fragment stage (the body of forward_sh*.frag): the glTF metallic-roughness BSDF exactly as the path tracer
+// evaluates it (src/trace/bsdf.cpp): GGX with alpha = roughness^2 (floored at 1e-3), the
+// height-correlated Smith visibility, Schlick Fresnel with F0 = mix(0.04, base, metallic), and
+// the diffuse base scaled by (1 - E(n.v)) (1 - E(n.l)) / (1 - E_avg), E being the albedo table
+// of the 0.04 dielectric layer (uploaded from trace::DielectricSpecularAlbedo and interpolated
+// the same way). Direct light comes from punctual lights with shadow maps; indirect light from
+// the SH probes (probe_lighting.glsl); emission is added; the environment is the clear colour.
+//
+// Not compiled on its own: forward_sh1..4.frag set PROBE_SH_ORDER (a compile-time constant of
+// probe_lighting.glsl) and include this, one SPIR-V per SH order.
+#include "raster_common.glsl"
+#define MATERIAL_SET 3  // after set 0 (frame), PROBE_SET 1 and BRDF_SET 2
+#include "probe_lighting.glsl"
+
+// Variants chosen from scene::SceneFeatures (raster/shader_variant.h): a scene pays only for
+// what it has; the compiler removes the dead branches.
+layout(constant_id = 0) const bool kDirectLights = true;
+layout(constant_id = 1) const bool kShadows = true;
+layout(constant_id = 2) const bool kTextures = true;
+layout(constant_id = 3) const bool kSpecularProbes = true;
+layout(constant_id = 4) const bool kProbes = true;
+layout(constant_id = 5) const bool kEmission = true;
+
+layout(set = 0, binding = 4) uniform sampler2DArrayShadow shadow_maps;
+// E(mu, roughness) nodes: 32 rows (roughness) of 32 values (cbrt(mu)), then 32 E_avg values.
+layout(set = 0, binding = 5, std430) readonly buffer AlbedoTable { float albedo_table[]; };
+
+const int kCosNodes = 32;
+const int kRoughnessNodes = 32;
+const float kMinAlpha = 1e-3;
+const float kPi = 3.14159265358979;
+
+layout(set = MATERIAL_SET, binding = 0) uniform MaterialData {
+  vec4 base_color;
+  vec4 emission;   // rgb: emissiveFactor × strength
+  vec4 params;     // x: metallic, y: roughness, z: normal scale, w: occlusion strength
+  vec4 alpha;      // x: cutoff, y: 1 = MASK, z: bit set of bound textures
+} material;
+layout(set = MATERIAL_SET, binding = 1) uniform sampler2D base_color_tex;
+layout(set = MATERIAL_SET, binding = 2) uniform sampler2D metallic_roughness_tex;
+layout(set = MATERIAL_SET, binding = 3) uniform sampler2D normal_tex;
+layout(set = MATERIAL_SET, binding = 4) uniform sampler2D occlusion_tex;
+layout(set = MATERIAL_SET, binding = 5) uniform sampler2D emissive_tex;
+
+layout(location = 0) in vec3 in_world;
+layout(location = 1) in vec3 in_normal;
+layout(location = 2) in vec2 in_uv;
+layout(location = 3) in vec4 in_tangent;
+
+layout(location = 0) out vec4 out_color;
+
+bool has_texture(uint bit) { return kTextures && (uint(material.alpha.z) & bit) != 0u; }
+
+// The table's roughness coordinate: uniform in log(alpha) from kMinAlpha (0) to 1 (1).
+float roughness_coordinate(float roughness) {
+  const float r = clamp(roughness, 0.0, 1.0);
+  const float a = max(r * r, kMinAlpha);
+  return 1.0 - log(a) / log(kMinAlpha);
+}
+
+void locate(float v, int nodes, out int i, out float t) {
+  const float f = clamp(v, 0.0, 1.0) * float(nodes - 1);
+  i = min(int(f), nodes - 2);
+  t = f - float(i);
+}
+
+float albedo_row(int row, int c, float tc) {
+  const float e0 = albedo_table[row * kCosNodes + c];
+  return e0 + tc * (albedo_table[row * kCosNodes + c + 1] - e0);
+}
+
+// E(mu) at the slice (r, tr) of the table.
+float layer_albedo(int r, float tr, float mu) {
+  int c;
+  float tc;
+  locate(pow(clamp(mu, 0.0, 1.0), 1.0 / 3.0), kCosNodes, c, tc);
+  const float e0 = albedo_row(r, c, tc);
+  const float e1 = albedo_row(r + 1, c, tc);
+  return e0 + tr * (e1 - e0);
+}
+
+float smith_s(float alpha2, float c) { return sqrt(c * c + alpha2 * max(0.0, 1.0 - c * c)); }
+
+// Fraction of light reaching p from shadow layers [first, first + count): PCF over a 3x3
+// grid of hardware-compared (bilinear where the device filters depth) taps.
+float shadow_lookup(uint layer, vec3 p) {
+  const ShadowLayer s = shadow_layers[layer];
+  const vec4 clip = s.light_view_proj * vec4(p, 1.0);
+  const vec3 ndc = clip.xyz / clip.w;
+  const vec2 uv = ndc.xy * 0.5 + 0.5;
+  const float ref = ndc.z - s.params.x;
+  const float texel = frame.shadow_params.x * frame.shadow_params.y;
+  float lit = 0.0;
+  for (int y = -1; y <= 1; ++y)
+    for (int x = -1; x <= 1; ++x)
+      lit += texture(shadow_maps, vec4(uv + vec2(x, y) * texel, float(layer), ref));
+  return lit / 9.0;
+}
+
+bool inside_layer(uint layer, vec3 p, float margin) {
+  const vec4 clip = shadow_layers[layer].light_view_proj * vec4(p, 1.0);
+  const vec3 ndc = clip.xyz / clip.w;
+  return all(lessThan(abs(ndc.xy), vec2(1.0 - margin))) && ndc.z >= 0.0 && ndc.z <= 1.0;
+}
+
+float shadow(LightData light, vec3 p, vec3 n, vec3 wi) {
+  if (!kShadows || light.spot_shadow.z < 0.0) return 1.0;
+  const uint first = uint(light.spot_shadow.z);
+  const uint count = uint(light.spot_shadow.w);
+  uint layer = first;
+  const uint type = uint(light.direction_type.w);
+  if (type == kLightPoint) {
+    // Cube faces in the order +X, -X, +Y, -Y, +Z, -Z: the major axis of light -> p.
+    const vec3 d = p - light.position_range.xyz;
+    const vec3 a = abs(d);
+    if (a.x >= a.y && a.x >= a.z) layer += d.x >= 0.0 ? 0u : 1u;
+    else if (a.y >= a.z) layer += d.y >= 0.0 ? 2u : 3u;
+    else layer += d.z >= 0.0 ? 4u : 5u;
+  } else if (type == kLightDirectional) {
+    // The finest cascade that holds p (with a PCF margin); none: unshadowed beyond the last.
+    uint chosen = first + count;
+    for (uint i = first; i < first + count; ++i)
+      if (inside_layer(i, p, 0.02)) { chosen = i; break; }
+    if (chosen == first + count) return 1.0;
+    layer = chosen;
+  }
+  // Offsetting along the normal, more at grazing light, removes acne without peter-panning.
+  const float cos_l = clamp(dot(n, wi), 0.0, 1.0);
+  // Perspective layers store the texel size at unit distance (params.z = 1).
+  const vec4 params = shadow_layers[layer].params;
+  const float texel = params.y * (params.z > 0.5 ? length(p - light.position_range.xyz) : 1.0);
+  const vec3 offset_p = p + n * texel * (1.0 + 2.0 * (1.0 - cos_l));
+  return shadow_lookup(layer, offset_p);
+}
+
+void main() {
+  vec4 base = material.base_color;
+  if (has_texture(1u)) base *= texture(base_color_tex, in_uv);
+  if (material.alpha.y > 0.5 && base.a < material.alpha.x) discard;
+
+  float metallic = material.params.x;
+  float roughness = material.params.y;
+  if (has_texture(2u)) {
+    const vec4 mr = texture(metallic_roughness_tex, in_uv);
+    roughness *= mr.g;
+    metallic *= mr.b;
+  }
+  metallic = clamp(metallic, 0.0, 1.0);
+  roughness = clamp(roughness, 0.0, 1.0);
+  const vec3 albedo = clamp(base.rgb, 0.0, 1.0);
+
+  // Shading normal: double-sided surfaces seen from behind turn to the viewer (single-sided
+  // back faces are culled, as the tracer ends paths there).
+  vec3 n = normalize(in_normal);
+  if (!gl_FrontFacing) n = -n;
+  if (has_texture(4u)) {
+    vec3 t = in_tangent.xyz - n * dot(n, in_tangent.xyz);
+    if (dot(t, t) > 1e-20) {
+      t = normalize(t);
+      const vec3 b = cross(n, t) * (in_tangent.w < 0.0 ? -1.0 : 1.0) * (gl_FrontFacing ? 1.0 : -1.0);
+      const vec3 c = texture(normal_tex, in_uv).xyz * 2.0 - 1.0;
+      n = normalize(t * c.x * material.params.z + b * c.y * material.params.z + n * c.z);
+    }
+  }
+  const vec3 v = normalize(views[pc.view_index].eye.xyz - in_world);
+  const float nov = dot(n, v);
+  const float cos_v = clamp(nov, 0.0, 1.0);
+  const vec3 f0 = mix(vec3(0.04), albedo, metallic);
+
+  int r;
+  float tr;
+  locate(roughness_coordinate(roughness), kRoughnessNodes, r, tr);
+  const float e_avg_0 = albedo_table[kCosNodes * kRoughnessNodes + r];
+  const float e_avg = e_avg_0 + tr * (albedo_table[kCosNodes * kRoughnessNodes + r + 1] - e_avg_0);
+  const float e_v = layer_albedo(r, tr, cos_v);
+  const vec3 diffuse_lobe = (1.0 - metallic) * albedo / (kPi * (1.0 - e_avg)) * (1.0 - e_v);
+  const float alpha = max(roughness * roughness, kMinAlpha);
+  const float alpha2 = alpha * alpha;
+
+  vec3 color = vec3(0.0);
+  if (kDirectLights && nov > 0.0) {
+    for (uint i = 0u; i < frame.counts.x; ++i) {
+      const LightData light = lights[i];
+      const uint type = uint(light.direction_type.w);
+      vec3 wi;
+      vec3 radiance = light.radiant.rgb;
+      if (type == kLightDirectional) {
+        wi = -light.direction_type.xyz;
+      } else {
+        const vec3 d = light.position_range.xyz - in_world;
+        const float dist2 = dot(d, d);
+        if (!(dist2 > 0.0)) continue;
+        const float dist = sqrt(dist2);
+        wi = d / dist;
+        float atten = 1.0 / dist2;
+        const float range = light.position_range.w;
+        if (range > 0.0) {
+          const float q = dist / range;
+          atten *= clamp(1.0 - q * q * q * q, 0.0, 1.0);
+        }
+        if (type == kLightSpot) {
+          const float cd = dot(light.direction_type.xyz, -wi);
+          const float a = clamp(cd * light.spot_shadow.x + light.spot_shadow.y, 0.0, 1.0);
+          atten *= a * a;
+        }
+        radiance *= atten;
+      }
+      const float nol = dot(n, wi);
+      if (nol <= 0.0 || !any(greaterThan(radiance, vec3(0.0)))) continue;
+      const vec3 h = normalize(v + wi);
+      const float noh = dot(n, h);
+      const float voh = 0.5 * (dot(v, h) + dot(wi, h));
+      // D with sin^2 from the tangent plane, V in the cancelled form (no 1 / cos).
+      const float sin2 = max(0.0, 1.0 - noh * noh);
+      const float tt = sin2 / alpha2 + noh * noh;
+      const float d_ggx = noh > 0.0 ? 1.0 / (kPi * alpha2 * tt * tt) : 0.0;
+      const float vis = 1.0 / (2.0 * (smith_s(alpha2, nov) * nol + smith_s(alpha2, nol) * nov));
+      const float m = 1.0 - clamp(voh, 0.0, 1.0);
+      const vec3 fresnel = f0 + (1.0 - f0) * (m * m * m * m * m);
+      const vec3 f = diffuse_lobe * (1.0 - layer_albedo(r, tr, nol)) + fresnel * (d_ggx * vis);
+      color += f * radiance * nol * shadow(light, in_world, n, wi);
+    }
+  }
+
+  if (kProbes) {
+    float occlusion = 1.0;
+    if (has_texture(8u))
+      occlusion = 1.0 + material.params.w * (texture(occlusion_tex, in_uv).r - 1.0);
+    const float nv = max(cos_v, 1e-4);
+    color += albedo * (1.0 - metallic) * brdf_diffuse_scale(nv, roughness) / kPi *
+             probe_irradiance(in_world, n) * occlusion;
+    if (kSpecularProbes) {
+      const vec2 dfg = brdf_dfg(nv, roughness);
+      color += (f0 * dfg.x + dfg.y) * probe_specular(in_world, reflect(-v, n), roughness);
+    }
+  }
+
+  if (kEmission && gl_FrontFacing) {
+    vec3 e = material.emission.rgb;
+    if (has_texture(16u)) e *= texture(emissive_tex, in_uv).rgb;
+    color += e;
+  }
+  out_color = vec4(color, 1.0);
+}

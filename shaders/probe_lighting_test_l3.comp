@@ -1,0 +1,5 @@
+// The probe-lighting test harness (probe_lighting_test.glsl) at SH order 3.
+#version 460
+#extension GL_GOOGLE_include_directive : enable
+#define PROBE_SH_ORDER 3
+#include "probe_lighting_test.glsl"

@@ -1,0 +1,89 @@
+#include "app/camera_options.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace ddish::app {
+
+void add_camera_options(CLI::App& cmd, CameraArgs& args) {
+  cmd.add_option("--camera", args.camera,
+                 "camera node name, or eye,target,up as 9 comma-separated numbers "
+                 "(default: the scene's default camera)");
+  CameraArgs* a = &args;
+  cmd.add_option_function<float>(
+         "--fov", [a](float deg) { a->fov = deg; },
+         "vertical field of view in degrees (default: the camera's, or 45)")
+      ->check(CLI::Range(0.1f, 179.0f));
+  cmd.add_option("--width", args.width, "image width in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16384));
+  cmd.add_option("--height", args.height, "image height in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 16384));
+}
+
+std::optional<std::vector<float>> parse_pose(const std::string& text) {
+  if (text.find(',') == std::string::npos) return std::nullopt;
+  std::vector<float> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    std::size_t used = 0;
+    float f = 0.0f;
+    try {
+      f = std::stof(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || !std::isfinite(f))
+      throw std::invalid_argument("--camera: '" + item + "' is not a number (want eye,target,up)");
+    v.push_back(f);
+  }
+  if (v.size() != 9)
+    throw std::invalid_argument("--camera wants 9 numbers eye,target,up (got " +
+                                std::to_string(v.size()) + ")");
+  return v;
+}
+
+const scene::Camera* find_camera(const scene::Scene& s, const std::string& name) {
+  if (const scene::Camera* c = s.find_camera(name)) return c;
+  // glTF cameras are often unnamed and known by their node's name.
+  for (const scene::Node& n : s.nodes)
+    if (n.name == name && n.camera >= 0 && n.camera < int(s.cameras.size()))
+      return &s.cameras[static_cast<std::size_t>(n.camera)];
+  return nullptr;
+}
+
+scene::View make_view(const scene::Scene& s, const CameraArgs& args) {
+  if (auto pose = parse_pose(args.camera)) {
+    const std::vector<float>& p = *pose;
+    glm::vec3 eye(p[0], p[1], p[2]), target(p[3], p[4], p[5]), up(p[6], p[7], p[8]);
+    glm::vec3 fwd = target - eye;
+    if (glm::length(fwd) == 0.0f || glm::length(glm::cross(fwd, up)) == 0.0f)
+      throw std::invalid_argument("--camera: eye equals target or up is parallel to the view");
+    scene::View v = scene::look_at_view(eye, target, up,
+                                        glm::radians(args.fov.value_or(kDefaultFovDeg)),
+                                        args.width, args.height);
+    v.name = "camera";
+    return v;
+  }
+  const scene::Camera* cam = nullptr;
+  if (!args.camera.empty()) {
+    cam = find_camera(s, args.camera);
+    if (!cam) throw std::invalid_argument("no camera '" + args.camera + "' in " + s.path);
+  } else {
+    cam = s.default_camera();
+    if (!cam) throw std::invalid_argument(s.path + " has no camera; give --camera eye,target,up");
+  }
+  scene::Camera c = *cam;
+  if (args.fov) c.yfov = glm::radians(*args.fov);
+  return scene::camera_view(c, args.width, args.height);
+}
+
+}  // namespace ddish::app

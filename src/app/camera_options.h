@@ -1,0 +1,46 @@
+// The camera options that `ddish reference` and `ddish render` share (--camera NODE or
+// eye,target,up; --fov; --width/--height) and the view they make, so that a rendered image and
+// its reference are taken from exactly the same view.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/view.h"
+
+namespace CLI {
+class App;
+}
+
+namespace ddish::scene {
+struct Camera;
+struct Scene;
+}  // namespace ddish::scene
+
+namespace ddish::app {
+
+inline constexpr float kDefaultFovDeg = 45.0f;  // for --camera eye,target,up without --fov
+
+struct CameraArgs {
+  std::string camera;        // node / camera name, or "ex,ey,ez,tx,ty,tz,ux,uy,uz"
+  std::optional<float> fov;  // degrees, vertical
+  int width = 512;
+  int height = 512;
+};
+
+// Registers --camera, --fov, --width and --height (with `args`' sizes as defaults).
+void add_camera_options(CLI::App& cmd, CameraArgs& args);
+
+// "ex,ey,ez,tx,ty,tz,ux,uy,uz" -> nine floats; nothing if the text has no comma; throws
+// std::invalid_argument for a malformed pose.
+std::optional<std::vector<float>> parse_pose(const std::string& text);
+
+// A camera by its name or its node's name; nullptr when there is none.
+const scene::Camera* find_camera(const scene::Scene& scene, const std::string& name);
+
+// The view the options describe for the scene as posed now (a camera node follows its
+// animation). Throws std::invalid_argument naming what is wrong.
+scene::View make_view(const scene::Scene& scene, const CameraArgs& args);
+
+}  // namespace ddish::app

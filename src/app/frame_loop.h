@@ -1,0 +1,94 @@
+// The per-frame orchestration of `ddish render`: pose the scene at t = time + k / fps, follow
+// the moved instances in the path tracer, update the probes once (shared by every view), upload
+// the probes that changed, rasterize the views, and write the images that are asked for. Each
+// stage's milliseconds go into a metrics::FrameTimings per frame:
+//   pose, tracer_update (animated scenes), probe_update, upload, raster_record (CPU: frame data
+//   and command recording), shadow_gpu / forward_gpu / tonemap_gpu (GPU timestamps), raster_wait
+//   (the rest of the wait for the GPU: submission, resolve, copies), readback, output.
+// They do not overlap, so a frame's total_ms is its wall time; rasterization is
+// raster_record + the three *_gpu + raster_wait.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "metrics/image.h"
+#include "metrics/timing.h"
+#include "scene/view.h"
+
+namespace ddish::probes {
+class ProbeTracer;
+class ProbeVolume;
+}  // namespace ddish::probes
+
+namespace ddish::raster {
+class Renderer;
+}
+
+namespace ddish::scene {
+struct Scene;
+}
+
+namespace ddish::trace {
+class Tracer;
+}
+
+namespace ddish::app {
+
+struct FrameLoopOptions {
+  int frames = 1;
+  double time = 0.0;  // t of frame 0, seconds
+  double fps = 30.0;
+  bool every = false;             // write every frame, not only the last
+  std::filesystem::path out;      // empty: write nothing
+  bool update_probes = true;      // false: render with the probes as they are
+};
+
+struct FrameReport {
+  int frame = 0;
+  double t = 0.0;
+  std::uint32_t probes_traced = 0;
+  std::uint32_t probes_uploaded = 0;
+  const metrics::FrameTimings* timings = nullptr;
+};
+
+struct FrameLoopResult {
+  metrics::TimingLog timings;
+  std::vector<std::filesystem::path> written;
+  metrics::Image last_linear;   // view 0 of the last frame
+  metrics::Image last_display;  // its display values, decoded back to linear
+};
+
+// The views of a frame from the scene as posed (a camera node may be animated).
+using ViewSource = std::function<std::vector<scene::View>(const scene::Scene&)>;
+
+class FrameLoop {
+ public:
+  // Everything is borrowed and must outlive the loop; the renderer was made for `volume`.
+  FrameLoop(scene::Scene& scene, trace::Tracer& tracer, const probes::ProbeTracer& probe_tracer,
+            probes::ProbeVolume& volume, raster::Renderer& renderer, ViewSource views);
+
+  // Runs the frames; `progress` (optional) is called after each.
+  FrameLoopResult run(const FrameLoopOptions& options,
+                      const std::function<void(const FrameReport&)>& progress = {});
+
+  // DIR/frame_NNNN.png and .exr for frame k.
+  static std::filesystem::path frame_path(const std::filesystem::path& dir, int frame,
+                                          const std::string& extension);
+
+ private:
+  std::vector<std::uint32_t> changed_probes();
+
+  scene::Scene& scene_;
+  trace::Tracer& tracer_;
+  const probes::ProbeTracer& probe_tracer_;
+  probes::ProbeVolume& volume_;
+  raster::Renderer& renderer_;
+  ViewSource views_;
+  std::vector<std::uint8_t> last_flags_;  // probe flags at the last upload
+};
+
+}  // namespace ddish::app

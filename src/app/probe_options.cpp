@@ -1,0 +1,80 @@
+#include "app/probe_options.h"
+
+#include <sstream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "scene/scene.h"
+
+namespace ddish::app {
+
+void add_probe_options(CLI::App& cmd, ProbeArgs& a) {
+  cmd.add_option("--grid", a.grid,
+                 "probe counts X,Y,Z, or auto (default: sidecar counts, else automatic)");
+  cmd.add_option("--probe-spacing", a.spacing, "fit the grid to the bounds at this spacing (m)");
+  cmd.add_option("--probe-samples", a.samples, "paths per probe per update")->capture_default_str();
+  cmd.add_option("--bounces", a.bounces, "scattering events per probe path")->capture_default_str();
+  cmd.add_option("--hysteresis", a.hysteresis, "running-average hysteresis in [0, 1)")
+      ->capture_default_str();
+  cmd.add_option("--sh-order", a.sh_order, "SH order 1..4")->capture_default_str();
+  cmd.add_option("--seed", a.seed, "random seed")->capture_default_str();
+}
+
+glm::ivec3 parse_grid(const std::string& text) {
+  std::stringstream ss(text);
+  glm::ivec3 c(0);
+  char comma1 = 0, comma2 = 0;
+  ss >> c.x >> comma1 >> c.y >> comma2 >> c.z;
+  if (!ss || comma1 != ',' || comma2 != ',' || ss.peek() != std::char_traits<char>::eof())
+    throw std::invalid_argument("--grid expects three counts X,Y,Z or auto, got '" + text + "'");
+  if (c.x < 1 || c.y < 1 || c.z < 1)
+    throw std::invalid_argument("--grid counts must be at least 1 on every axis, got '" + text +
+                                "'");
+  return c;
+}
+
+void check_probe_options(const ProbeArgs& a) {
+  const bool counts = !a.grid.empty() && a.grid != "auto";
+  if (!a.grid.empty() && a.spacing)
+    throw std::invalid_argument("give either --grid or --probe-spacing, not both");
+  if (counts) parse_grid(a.grid);
+  if (a.spacing && !(*a.spacing > 0.0f))
+    throw std::invalid_argument(fmt::format("--probe-spacing must be positive, got {:g}", *a.spacing));
+  if (a.samples < 1) throw std::invalid_argument("--probe-samples must be at least 1");
+  if (a.bounces < 0) throw std::invalid_argument("--bounces must be 0 or more");
+  if (!(a.hysteresis >= 0.0f && a.hysteresis < 1.0f))
+    throw std::invalid_argument(fmt::format("--hysteresis must be in [0, 1), got {:g}", a.hysteresis));
+  if (a.sh_order < 1 || a.sh_order > 4)
+    throw std::invalid_argument(fmt::format("--sh-order must be 1, 2, 3 or 4, got {}", a.sh_order));
+}
+
+Placement place_probes(const ProbeArgs& a, const scene::Scene& s) {
+  const bool sidecar_bounds = s.sidecar.probe_bounds.has_value();
+  const scene::Aabb bounds = sidecar_bounds ? *s.sidecar.probe_bounds : s.bounds();
+  if (bounds.empty())
+    throw std::invalid_argument(s.path + ": the scene has no geometry to fit a probe grid to "
+                                "(give probe_bounds in its sidecar)");
+  const std::string over = sidecar_bounds ? "sidecar bounds" : "scene bounds";
+  if (!a.grid.empty() && a.grid != "auto")
+    return {probes::ProbeGrid(bounds, parse_grid(a.grid)), "--grid over " + over};
+  if (a.spacing)
+    return {probes::ProbeGrid::fit_spacing(bounds, *a.spacing),
+            fmt::format("--probe-spacing {:g} m over {}", *a.spacing, over)};
+  if (s.sidecar.probe_counts && a.grid != "auto")
+    return {probes::ProbeGrid(bounds, *s.sidecar.probe_counts), "sidecar counts over " + over};
+  return {probes::ProbeGrid::fit_auto(bounds),
+          fmt::format("automatic ({} along the longest axis) over {}",
+                      probes::ProbeGrid::kAutoLongestAxisProbes, over)};
+}
+
+probes::UpdateOptions update_options(const ProbeArgs& a) {
+  probes::UpdateOptions options;
+  options.samples = static_cast<std::uint32_t>(a.samples);
+  options.hysteresis = a.hysteresis;
+  options.seed = a.seed;
+  return options;
+}
+
+}  // namespace ddish::app

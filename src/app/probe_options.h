@@ -1,0 +1,62 @@
+// The probe options that `ddish probes` and `ddish render` (and later the server) share:
+// placement (--grid X,Y,Z|auto, --probe-spacing M), the update (--probe-samples, --bounces,
+// --hysteresis, --seed) and --sh-order, with their checks and the grid they place.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "probes/probe_grid.h"
+#include "probes/probe_tracer.h"
+#include "probes/probe_volume.h"
+
+namespace CLI {
+class App;
+}
+
+namespace ddish::scene {
+struct Scene;
+}
+
+namespace ddish::app {
+
+// Probe paths scatter at most this many times by default: indoors, light that has bounced
+// more than four times carries a few percent of the total (albedo ~0.5 per bounce), and
+// Russian roulette already ends most longer paths early, so deeper paths buy little.
+inline constexpr int kDefaultProbeBounces = 4;
+
+struct ProbeArgs {
+  std::string grid;  // "X,Y,Z", "auto", or empty (sidecar counts, else automatic)
+  std::optional<float> spacing;
+  int samples = 256;
+  int bounces = kDefaultProbeBounces;
+  float hysteresis = probes::kDefaultHysteresis;
+  int sh_order = probes::kDefaultShOrder;
+  std::uint64_t seed = 1;
+};
+
+// Registers --grid, --probe-spacing, --probe-samples, --bounces, --hysteresis, --sh-order and
+// --seed on cmd, writing into args (which must outlive the parse).
+void add_probe_options(CLI::App& cmd, ProbeArgs& args);
+
+// Throws std::invalid_argument with a one-line message for an impossible combination or value.
+void check_probe_options(const ProbeArgs& args);
+
+// "X,Y,Z" -> three positive counts; throws std::invalid_argument otherwise.
+glm::ivec3 parse_grid(const std::string& text);
+
+struct Placement {
+  probes::ProbeGrid grid;
+  std::string how;  // e.g. "--grid over sidecar bounds", for the command's report
+};
+
+// --grid counts or --probe-spacing over the sidecar's probe_bounds (else the scene's bounds);
+// without either, the sidecar's probe counts; without those (or with --grid auto), automatic.
+Placement place_probes(const ProbeArgs& args, const scene::Scene& scene);
+
+probes::UpdateOptions update_options(const ProbeArgs& args);
+
+}  // namespace ddish::app

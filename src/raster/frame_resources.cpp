@@ -1,0 +1,136 @@
+#include "raster/frame_resources.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "gpu/device.h"
+#include "gpu/error.h"
+#include "trace/ggx.h"
+#include "trace/specular_albedo.h"
+
+namespace ddish::raster {
+
+namespace {
+
+using Table = trace::DielectricSpecularAlbedo;
+
+VkWriteDescriptorSet buffer_write(VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type,
+                                  const VkDescriptorBufferInfo* info) {
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = type;
+  w.pBufferInfo = info;
+  return w;
+}
+
+}  // namespace
+
+std::vector<float> FrameResources::albedo_table() {
+  // The table's nodes are reproduced by evaluating it exactly at them: roughness node r sits at
+  // alpha = kMinAlpha^(1 - y_r), cosine node c at mu = x_c^3 (specular_albedo.cpp's grid).
+  const Table& table = Table::get();
+  std::vector<float> out;
+  out.reserve(Table::kCosNodes * Table::kRoughnessNodes + Table::kRoughnessNodes);
+  auto roughness_at = [](int r) {
+    const float y = float(r) / float(Table::kRoughnessNodes - 1);
+    return std::sqrt(std::pow(trace::Ggx::kMinAlpha, 1.0f - y));
+  };
+  for (int r = 0; r < Table::kRoughnessNodes; ++r)
+    for (int c = 0; c < Table::kCosNodes; ++c) {
+      const float x = float(c) / float(Table::kCosNodes - 1);
+      out.push_back(table.directional(x * x * x, roughness_at(r)));
+    }
+  for (int r = 0; r < Table::kRoughnessNodes; ++r) out.push_back(table.average(roughness_at(r)));
+  return out;
+}
+
+FrameResources::FrameResources(const gpu::Device& device, std::uint32_t max_lights,
+                               std::uint32_t max_layers)
+    : device_(device.handle()),
+      max_lights_(std::max(max_lights, 1u)),
+      max_layers_(std::max(max_layers, 1u)) {
+  constexpr auto storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  frame_ = gpu::Buffer(device, sizeof(FrameData), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                       gpu::MemoryUse::upload);
+  views_ = gpu::Buffer(device, sizeof(ViewData) * kMaxViews, storage, gpu::MemoryUse::upload);
+  lights_ = gpu::Buffer(device, sizeof(LightData) * max_lights_, storage, gpu::MemoryUse::upload);
+  layers_ = gpu::Buffer(device, sizeof(ShadowLayerData) * max_layers_, storage, gpu::MemoryUse::upload);
+  const std::vector<float> table = albedo_table();
+  albedo_ = gpu::Buffer(device, table.size() * sizeof(float), storage, gpu::MemoryUse::upload);
+  albedo_.write(table.data(), table.size() * sizeof(float));
+
+  constexpr VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  const std::array<VkDescriptorSetLayoutBinding, 6> bindings{{
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stages, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr},
+      {3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr},
+      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+      {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
+  }};
+  VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layout_info.bindingCount = static_cast<std::uint32_t>(bindings.size());
+  layout_info.pBindings = bindings.data();
+  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+  gpu::check(vkCreateDescriptorSetLayout(device_, &layout_info, nullptr, &layout),
+             "vkCreateDescriptorSetLayout");
+  layout_ = {device_, layout};
+
+  const std::array<VkDescriptorPoolSize, 3> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                                   {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
+                                                   {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}}};
+  VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pool_info.maxSets = 1;
+  pool_info.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+  pool_info.pPoolSizes = sizes.data();
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  gpu::check(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
+  pool_ = {device_, pool};
+  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  alloc.descriptorPool = pool;
+  alloc.descriptorSetCount = 1;
+  alloc.pSetLayouts = &layout;
+  gpu::check(vkAllocateDescriptorSets(device_, &alloc, &set_), "vkAllocateDescriptorSets");
+
+  const std::array<VkDescriptorBufferInfo, 5> infos{
+      {frame_.descriptor(), views_.descriptor(), lights_.descriptor(), layers_.descriptor(),
+       albedo_.descriptor()}};
+  const std::array<VkWriteDescriptorSet, 5> writes{
+      {buffer_write(set_, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, &infos[0]),
+       buffer_write(set_, 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &infos[1]),
+       buffer_write(set_, 2, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &infos[2]),
+       buffer_write(set_, 3, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &infos[3]),
+       buffer_write(set_, 5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, &infos[4])}};
+  vkUpdateDescriptorSets(device_, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+void FrameResources::update(const FrameData& frame, std::span<const ViewData> views,
+                            std::span<const LightData> lights, std::span<const ShadowLayerData> layers) {
+  if (views.size() > kMaxViews || lights.size() > max_lights_ || layers.size() > max_layers_)
+    throw gpu::GpuError("frame of " + std::to_string(views.size()) + " views, " +
+                        std::to_string(lights.size()) + " lights and " +
+                        std::to_string(layers.size()) + " shadow layers exceeds the renderer's " +
+                        std::to_string(kMaxViews) + ", " + std::to_string(max_lights_) + " and " +
+                        std::to_string(max_layers_));
+  frame_.write(&frame, sizeof(frame));
+  if (!views.empty()) views_.write(views);
+  if (!lights.empty()) lights_.write(lights);
+  if (!layers.empty()) layers_.write(layers);
+}
+
+void FrameResources::bind_shadow_maps(VkImageView view, VkSampler sampler) {
+  const VkDescriptorImageInfo image{sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set_;
+  w.dstBinding = 4;
+  w.descriptorCount = 1;
+  w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  w.pImageInfo = &image;
+  vkUpdateDescriptorSets(device_, 1, &w, 0, nullptr);
+}
+
+}  // namespace ddish::raster

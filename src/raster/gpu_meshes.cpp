@@ -1,0 +1,90 @@
+#include "raster/gpu_meshes.h"
+
+#include <cstddef>
+#include <stdexcept>
+
+#include "gpu/device.h"
+#include "gpu/transfer.h"
+#include "scene/scene.h"
+
+namespace ddish::raster {
+
+namespace {
+
+Vertex make_vertex(const scene::Mesh& mesh, std::size_t i) {
+  Vertex v{};
+  const glm::vec3& p = mesh.positions[i];
+  v.position[0] = p.x;
+  v.position[1] = p.y;
+  v.position[2] = p.z;
+  // The loader guarantees positions; the other arrays are either complete or absent, and an
+  // absent one reads as the neutral value (the tracer does the same).
+  const glm::vec3 n = i < mesh.normals.size() ? mesh.normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
+  v.normal[0] = n.x;
+  v.normal[1] = n.y;
+  v.normal[2] = n.z;
+  const glm::vec2 uv = i < mesh.uvs.size() ? mesh.uvs[i] : glm::vec2(0.0f);
+  v.uv[0] = uv.x;
+  v.uv[1] = uv.y;
+  const glm::vec4 t = i < mesh.tangents.size() ? mesh.tangents[i] : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  v.tangent[0] = t.x;
+  v.tangent[1] = t.y;
+  v.tangent[2] = t.z;
+  v.tangent[3] = t.w;
+  return v;
+}
+
+}  // namespace
+
+GpuMeshes::GpuMeshes(const gpu::Device& device, gpu::CommandRunner& runner,
+                     const scene::Scene& scene) {
+  std::vector<Vertex> vertices;
+  std::vector<std::uint32_t> indices;
+  ranges_.reserve(scene.meshes.size());
+  for (const scene::Mesh& mesh : scene.meshes) {
+    MeshRange range;
+    range.first_index = static_cast<std::uint32_t>(indices.size());
+    range.index_count = static_cast<std::uint32_t>(mesh.indices.size());
+    range.vertex_offset = static_cast<std::int32_t>(vertices.size());
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) vertices.push_back(make_vertex(mesh, i));
+    indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+    ranges_.push_back(range);
+  }
+  // Vulkan has no empty buffers: a scene without geometry still gets one (unused) element.
+  if (vertices.empty()) vertices.push_back(Vertex{});
+  if (indices.empty()) indices.push_back(0);
+  const VkDeviceSize vertex_bytes = vertices.size() * sizeof(Vertex);
+  const VkDeviceSize index_bytes = indices.size() * sizeof(std::uint32_t);
+  vertices_ = gpu::Buffer(device, vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                          gpu::MemoryUse::device_local);
+  indices_ = gpu::Buffer(device, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                         gpu::MemoryUse::device_local);
+  gpu::upload(device, runner, vertices_, vertices.data(), vertex_bytes);
+  gpu::upload(device, runner, indices_, indices.data(), index_bytes);
+}
+
+void GpuMeshes::bind(VkCommandBuffer cmd) const {
+  const VkBuffer buffer = vertices_.handle();
+  const VkDeviceSize offset = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &buffer, &offset);
+  vkCmdBindIndexBuffer(cmd, indices_.handle(), 0, VK_INDEX_TYPE_UINT32);
+}
+
+void GpuMeshes::draw(VkCommandBuffer cmd, int mesh) const {
+  const MeshRange& r = range(mesh);
+  if (r.index_count == 0) return;
+  vkCmdDrawIndexed(cmd, r.index_count, 1, r.first_index, r.vertex_offset, 0);
+}
+
+VkVertexInputBindingDescription GpuMeshes::binding() {
+  return {0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+}
+
+std::array<VkVertexInputAttributeDescription, 4> GpuMeshes::attributes() {
+  return {{{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
+           {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
+           {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
+           {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}}};
+}
+
+}  // namespace ddish::raster

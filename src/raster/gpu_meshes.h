@@ -1,0 +1,64 @@
+// Scene geometry on the GPU: every mesh's vertices and indices packed into one vertex buffer and
+// one index buffer, uploaded once. Instances share their mesh's range and differ only in the
+// transform pushed with each draw, so a moving instance costs nothing to re-upload.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/buffer.h"
+
+namespace ddish::gpu {
+class CommandRunner;
+class Device;
+}  // namespace ddish::gpu
+
+namespace ddish::scene {
+struct Scene;
+}
+
+namespace ddish::raster {
+
+// One interleaved vertex: 48 bytes. Attribute locations 0..3 in forward.vert; the shadow pass
+// reads the position only.
+struct Vertex {
+  float position[3];
+  float normal[3];
+  float uv[2];
+  float tangent[4];
+};
+static_assert(sizeof(Vertex) == 48);
+
+struct MeshRange {
+  std::uint32_t first_index = 0;
+  std::uint32_t index_count = 0;
+  std::int32_t vertex_offset = 0;
+};
+
+class GpuMeshes {
+ public:
+  GpuMeshes(const gpu::Device& device, gpu::CommandRunner& runner, const scene::Scene& scene);
+
+  // Binds the vertex buffer (binding 0) and the index buffer for the draws that follow.
+  void bind(VkCommandBuffer cmd) const;
+  // Records the draw of mesh `mesh` (its whole index range); nothing for an empty mesh.
+  void draw(VkCommandBuffer cmd, int mesh) const;
+
+  const MeshRange& range(int mesh) const { return ranges_.at(static_cast<std::size_t>(mesh)); }
+  std::size_t mesh_count() const { return ranges_.size(); }
+
+  // Vertex input of the pipelines that draw these buffers: all four attributes, or the
+  // position alone (depth-only passes).
+  static VkVertexInputBindingDescription binding();
+  static std::array<VkVertexInputAttributeDescription, 4> attributes();
+
+ private:
+  gpu::Buffer vertices_;
+  gpu::Buffer indices_;
+  std::vector<MeshRange> ranges_;
+};
+
+}  // namespace ddish::raster

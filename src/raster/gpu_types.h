@@ -1,0 +1,72 @@
+// C++ mirrors of the structures the rasterizer's shaders read (shaders/raster_common.glsl,
+// shaders/forward.frag). Every member is a vec4 or mat4 so std140 and std430 agree with the C++
+// layout without padding rules; the static_asserts keep both sides honest.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace ddish::raster {
+
+// Push constants of every draw (forward and shadow): 120 bytes, within the 128 every device has.
+struct DrawConstants {
+  glm::mat4 model{1.0f};
+  glm::vec4 normal_matrix[3]{};  // columns of inverse-transpose(mat3(model)); [0].w: handedness
+  std::uint32_t view_index = 0;  // forward: views[]; shadow: shadow_layers[]
+  std::uint32_t material = 0;
+};
+static_assert(sizeof(DrawConstants) == 120);
+
+// Builds the per-instance constants: the normal matrix is computed once per instance, not per
+// vertex. A mirroring transform (det < 0) flips the tangent handedness, as glTF requires.
+DrawConstants draw_constants(const glm::mat4& model, std::uint32_t view_index,
+                             std::uint32_t material);
+
+struct ViewData {
+  glm::mat4 view_proj{1.0f};
+  glm::vec4 eye{0.0f};
+};
+static_assert(sizeof(ViewData) == 80);
+
+struct FrameData {
+  glm::vec4 environment{0.0f};
+  glm::uvec4 counts{0u};         // x: lights, y: shadow layers, z: views
+  glm::vec4 shadow_params{0.0f}; // x: 1 / shadow map size, y: PCF tap spacing in texels
+};
+static_assert(sizeof(FrameData) == 48);
+
+enum class LightKind : std::uint32_t { directional = 0, point = 1, spot = 2 };
+
+struct LightData {
+  glm::vec4 position_range{0.0f};
+  glm::vec4 direction_type{0.0f};
+  glm::vec4 radiant{0.0f};
+  glm::vec4 spot_shadow{0.0f, 0.0f, -1.0f, 0.0f};
+};
+static_assert(sizeof(LightData) == 64);
+
+struct ShadowLayerData {
+  glm::mat4 light_view_proj{1.0f};
+  glm::vec4 params{0.0f};  // x: depth bias, y: normal offset (world units)
+};
+static_assert(sizeof(ShadowLayerData) == 80);
+
+// Texture slots as bits of MaterialData::alpha.z (forward.frag's has_texture).
+enum TextureBit : std::uint32_t {
+  kBaseColorBit = 1u,
+  kMetallicRoughnessBit = 2u,
+  kNormalBit = 4u,
+  kOcclusionBit = 8u,
+  kEmissiveBit = 16u,
+};
+
+struct MaterialData {
+  glm::vec4 base_color{1.0f};
+  glm::vec4 emission{0.0f};
+  glm::vec4 params{0.0f};  // metallic, roughness, normal scale, occlusion strength
+  glm::vec4 alpha{0.0f};   // cutoff, 1 = MASK, texture bits
+};
+static_assert(sizeof(MaterialData) == 64);
+
+}  // namespace ddish::raster

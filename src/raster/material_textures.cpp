@@ -1,0 +1,221 @@
+#include "raster/material_textures.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <string>
+
+#include "gpu/commands.h"
+#include "gpu/device.h"
+#include "gpu/error.h"
+#include "raster/gpu_types.h"
+#include "scene/scene.h"
+
+namespace ddish::raster {
+
+namespace {
+
+constexpr std::uint32_t kSlots = 5;  // bindings 1..5, in forward.frag's order
+
+void mip_barrier(VkCommandBuffer cmd, VkImage image, std::uint32_t mip, VkImageLayout from,
+                 VkImageLayout to, VkAccessFlags src, VkAccessFlags dst, VkPipelineStageFlags dst_stage) {
+  VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  b.srcAccessMask = src;
+  b.dstAccessMask = dst;
+  b.oldLayout = from;
+  b.newLayout = to;
+  b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  b.image = image;
+  b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, mip, 1, 0, 1};
+  vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, dst_stage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+void require_blit_features(const gpu::Device& device, VkFormat format) {
+  VkFormatProperties props{};
+  vkGetPhysicalDeviceFormatProperties(device.physical(), format, &props);
+  const VkFormatFeatureFlags need = VK_FORMAT_FEATURE_BLIT_SRC_BIT | VK_FORMAT_FEATURE_BLIT_DST_BIT |
+                                    VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  if ((props.optimalTilingFeatures & need) != need)
+    throw gpu::GpuError(device.info().name + " cannot blit and linearly filter VkFormat " +
+                        std::to_string(static_cast<int>(format)) +
+                        " (needed to build texture mipmaps)");
+}
+
+}  // namespace
+
+gpu::Image MaterialTextures::upload_texture(const gpu::Device& device, gpu::CommandRunner& runner,
+                                            const scene::Texture& texture, VkFormat format) {
+  require_blit_features(device, format);
+  const auto w = static_cast<std::uint32_t>(std::max(texture.width, 1));
+  const auto h = static_cast<std::uint32_t>(std::max(texture.height, 1));
+  const std::uint32_t mips = std::bit_width(std::max(w, h));
+  gpu::Image image(device, {.width = w, .height = h, .format = format,
+                            .usage = VK_IMAGE_USAGE_SAMPLED_BIT, .mip_levels = mips});
+  const VkDeviceSize bytes = VkDeviceSize{w} * h * 4;
+  gpu::Buffer staging(device, bytes, 0, gpu::MemoryUse::upload);
+  if (texture.rgba8.size() >= bytes)
+    staging.write(texture.rgba8.data(), bytes);
+  else  // a texture that failed to decode reads as white, as the tracer's lookup does
+    std::fill_n(static_cast<std::uint8_t*>(staging.mapped()), bytes, std::uint8_t{255});
+
+  const VkImage img = image.handle();
+  runner.run([&](VkCommandBuffer cmd) {
+    gpu::image_barrier(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_ACCESS_TRANSFER_WRITE_BIT);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {w, h, 1};
+    vkCmdCopyBufferToImage(cmd, staging.handle(), img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    // Each level is a box-filtered blit of the one above; a level becomes a blit source (and,
+    // once read, shader-readable) right after it is written.
+    std::int32_t mw = static_cast<std::int32_t>(w), mh = static_cast<std::int32_t>(h);
+    for (std::uint32_t m = 1; m < mips; ++m) {
+      mip_barrier(cmd, img, m - 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT);
+      VkImageBlit blit{};
+      blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m - 1, 0, 1};
+      blit.srcOffsets[1] = {mw, mh, 1};
+      mw = std::max(mw / 2, 1);
+      mh = std::max(mh / 2, 1);
+      blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
+      blit.dstOffsets[1] = {mw, mh, 1};
+      vkCmdBlitImage(cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+      mip_barrier(cmd, img, m - 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                  VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_READ_BIT,
+                  VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+    }
+    mip_barrier(cmd, img, mips - 1, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_ACCESS_TRANSFER_WRITE_BIT,
+                VK_ACCESS_SHADER_READ_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT);
+  });
+  return image;
+}
+
+const gpu::Image& MaterialTextures::image_for(const gpu::Device& device, gpu::CommandRunner& runner,
+                                              const scene::Scene& scene, int texture, bool srgb) {
+  const auto key = std::make_pair(texture, srgb);
+  auto it = images_.find(key);
+  if (it == images_.end()) {
+    const VkFormat format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+    it = images_.emplace(key, upload_texture(device, runner,
+                                             scene.textures.at(static_cast<std::size_t>(texture)),
+                                             format)).first;
+  }
+  return it->second;
+}
+
+MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner& runner,
+                                   const scene::Scene& scene, bool textures)
+    : device_(device.handle()) {
+  scene::Texture white_texel{"white", 1, 1, {255, 255, 255, 255}};
+  white_ = upload_texture(device, runner, white_texel, VK_FORMAT_R8G8B8A8_UNORM);
+
+  VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sampler.magFilter = VK_FILTER_LINEAR;
+  sampler.minFilter = VK_FILTER_LINEAR;
+  sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  sampler.maxLod = VK_LOD_CLAMP_NONE;
+  if (device.features().sampler_anisotropy) {
+    sampler.anisotropyEnable = VK_TRUE;
+    sampler.maxAnisotropy = std::min(8.0f, device.limits().maxSamplerAnisotropy);
+  }
+  VkSampler s = VK_NULL_HANDLE;
+  gpu::check(vkCreateSampler(device_, &sampler, nullptr, &s), "vkCreateSampler");
+  sampler_ = {device_, s};
+
+  std::array<VkDescriptorSetLayoutBinding, kSlots + 1> bindings{};
+  bindings[0] = {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  for (std::uint32_t i = 1; i <= kSlots; ++i)
+    bindings[i] = {i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+  VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layout_info.bindingCount = static_cast<std::uint32_t>(bindings.size());
+  layout_info.pBindings = bindings.data();
+  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+  gpu::check(vkCreateDescriptorSetLayout(device_, &layout_info, nullptr, &layout),
+             "vkCreateDescriptorSetLayout");
+  layout_ = {device_, layout};
+
+  // Scene materials, then glTF's default material for meshes without one.
+  std::vector<scene::Material> materials = scene.materials;
+  materials.push_back(scene::Material{});
+  const auto count = static_cast<std::uint32_t>(materials.size());
+  const VkDeviceSize align = std::max<VkDeviceSize>(device.limits().minUniformBufferOffsetAlignment,
+                                                    sizeof(MaterialData));
+  const VkDeviceSize stride = (sizeof(MaterialData) + align - 1) / align * align;
+  uniforms_ = gpu::Buffer(device, stride * count, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                          gpu::MemoryUse::upload);
+
+  std::array<VkDescriptorPoolSize, 2> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, count},
+                                             {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count * kSlots}}};
+  VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pool_info.maxSets = count;
+  pool_info.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+  pool_info.pPoolSizes = sizes.data();
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  gpu::check(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
+  pool_ = {device_, pool};
+  std::vector<VkDescriptorSetLayout> layouts(count, layout);
+  sets_.resize(count);
+  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  alloc.descriptorPool = pool;
+  alloc.descriptorSetCount = count;
+  alloc.pSetLayouts = layouts.data();
+  gpu::check(vkAllocateDescriptorSets(device_, &alloc, sets_.data()), "vkAllocateDescriptorSets");
+
+  for (std::uint32_t m = 0; m < count; ++m) {
+    const scene::Material& mat = materials[m];
+    const std::array<std::pair<const scene::TextureSlot*, bool>, kSlots> slots{{
+        {&mat.base_color_texture, true},
+        {&mat.metallic_roughness_texture, false},
+        {&mat.normal_texture, false},
+        {&mat.occlusion_texture, false},
+        {&mat.emissive_texture, true},
+    }};
+    MaterialData data;
+    data.base_color = mat.base_color;
+    data.emission = glm::vec4(mat.emission(), 0.0f);
+    data.params = {mat.metallic, mat.roughness, mat.normal_scale, mat.occlusion_strength};
+    std::uint32_t bits = 0;
+    std::array<VkDescriptorImageInfo, kSlots> images{};
+    for (std::uint32_t i = 0; i < kSlots; ++i) {
+      const scene::TextureSlot& slot = *slots[i].first;
+      const bool bound = textures && slot && static_cast<std::size_t>(slot.texture) < scene.textures.size();
+      const gpu::Image& image = bound ? image_for(device, runner, scene, slot.texture, slots[i].second) : white_;
+      if (bound) bits |= 1u << i;
+      images[i] = {sampler_.get(), image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    }
+    data.alpha = {mat.alpha_cutoff, mat.alpha_mode == scene::AlphaMode::Mask ? 1.0f : 0.0f,
+                  static_cast<float>(bits), 0.0f};
+    uniforms_.write(&data, sizeof(data), stride * m);
+
+    VkDescriptorBufferInfo buffer{uniforms_.handle(), stride * m, sizeof(MaterialData)};
+    std::array<VkWriteDescriptorSet, kSlots + 1> writes{};
+    writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[0].dstSet = sets_[m];
+    writes[0].dstBinding = 0;
+    writes[0].descriptorCount = 1;
+    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    writes[0].pBufferInfo = &buffer;
+    for (std::uint32_t i = 0; i < kSlots; ++i) {
+      writes[i + 1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+      writes[i + 1].dstSet = sets_[m];
+      writes[i + 1].dstBinding = i + 1;
+      writes[i + 1].descriptorCount = 1;
+      writes[i + 1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+      writes[i + 1].pImageInfo = &images[i];
+    }
+    vkUpdateDescriptorSets(device_, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+  }
+}
+
+VkDescriptorSet MaterialTextures::set(int material) const {
+  if (material < 0 || static_cast<std::size_t>(material) + 1 >= sets_.size()) return sets_.back();
+  return sets_[static_cast<std::size_t>(material)];
+}
+
+}  // namespace ddish::raster

@@ -1,0 +1,62 @@
+// Materials on the GPU: the scene's textures as sampled images with full mip chains (generated
+// on the GPU by blits), one sampler, and one descriptor set per material (lavapipe has no
+// descriptor indexing, so a material is bound per draw): a uniform block of its factors and
+// five combined image samplers (base colour and emissive in sRGB formats, the rest linear).
+// Empty slots are bound to a 1x1 white texture and flagged off in the uniform block.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/buffer.h"
+#include "gpu/handle.h"
+#include "gpu/image.h"
+
+namespace ddish::gpu {
+class CommandRunner;
+class Device;
+}  // namespace ddish::gpu
+
+namespace ddish::scene {
+struct Scene;
+struct Texture;
+}  // namespace ddish::scene
+
+namespace ddish::raster {
+
+class MaterialTextures {
+ public:
+  // textures = false: no texture is uploaded or flagged (SceneFeatures had none, or the plan
+  // leaves sampling out); every slot reads the white texture and the shader skips sampling.
+  MaterialTextures(const gpu::Device& device, gpu::CommandRunner& runner, const scene::Scene& scene,
+                   bool textures);
+
+  VkDescriptorSetLayout layout() const { return layout_.get(); }
+  // The set of scene material `material`; -1 is glTF's default material.
+  VkDescriptorSet set(int material) const;
+  std::size_t texture_images() const { return images_.size(); }
+
+  // A texture uploaded to an RGBA8 image of `format` with all mips (public for tests). Throws
+  // GpuError naming the format feature the device lacks for mip generation.
+  static gpu::Image upload_texture(const gpu::Device& device, gpu::CommandRunner& runner,
+                                   const scene::Texture& texture, VkFormat format);
+
+ private:
+  const gpu::Image& image_for(const gpu::Device& device, gpu::CommandRunner& runner,
+                              const scene::Scene& scene, int texture, bool srgb);
+
+  VkDevice device_ = VK_NULL_HANDLE;
+  gpu::Image white_;
+  std::map<std::pair<int, bool>, gpu::Image> images_;  // (texture, sRGB) -> image
+  gpu::DeviceHandle<VkSampler, vkDestroySampler> sampler_;
+  gpu::Buffer uniforms_;
+  gpu::DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout> layout_;
+  gpu::DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool> pool_;
+  std::vector<VkDescriptorSet> sets_;  // scene materials, then the default material
+};
+
+}  // namespace ddish::raster

@@ -1,0 +1,61 @@
+// Where the forward pass draws: an HDR colour target (RGBA16F) and depth, one array layer per
+// view, multisampled when asked, with a single-sampled resolve image that the readback and the
+// tonemapper read. With one sample per pixel the colour target is the resolve image itself.
+// Multisampled layers are resolved with one vkCmdResolveImage over all layers after the views
+// are drawn, not by resolve attachments: with dynamic-rendering resolve attachments, lavapipe
+// (Mesa 22.3) left array layer 1 of the resolve image wrong while layer 0 was right, with no
+// validation error; RendererTest.SeveralViewsEqualSeparateFrames caught it and guards this.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "gpu/image.h"
+
+namespace ddish::gpu {
+class Device;
+}
+
+namespace ddish::raster {
+
+struct RenderTargetDesc {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t layers = 1;  // views
+  std::uint32_t samples = 1;
+};
+
+class RenderTarget {
+ public:
+  static constexpr VkFormat kColorFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+  static constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+
+  // Throws GpuError naming the unsupported sample count (with the counts the device has) or
+  // the format the device cannot render to.
+  RenderTarget(const gpu::Device& device, const RenderTargetDesc& desc);
+
+  const RenderTargetDesc& desc() const { return desc_; }
+  VkSampleCountFlagBits samples() const { return static_cast<VkSampleCountFlagBits>(desc_.samples); }
+  bool multisampled() const { return desc_.samples > 1; }
+
+  VkImageView color_view(std::uint32_t layer) const;    // what is drawn into
+  VkImageView depth_view(std::uint32_t layer) const { return depth_views_.at(layer).get(); }
+  const gpu::Image& resolved() const { return resolved_; }
+
+  // Records the transitions into attachment layouts (contents discarded) before drawing.
+  void begin_frame(VkCommandBuffer cmd) const;
+  // Records the resolve (when multisampled) and leaves the resolved image ready for copying
+  // to a buffer (TRANSFER_SRC_OPTIMAL).
+  void end_frame(VkCommandBuffer cmd) const;
+
+ private:
+  RenderTargetDesc desc_;
+  gpu::Image msaa_color_;  // only when multisampled
+  gpu::Image resolved_;
+  gpu::Image depth_;
+  std::vector<gpu::ImageView> msaa_views_, resolved_views_, depth_views_;
+};
+
+}  // namespace ddish::raster

@@ -1,0 +1,234 @@
+#include "raster/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <string>
+
+#include "gpu/device.h"
+#include "gpu/error.h"
+#include "gpu/image.h"
+#include "probes/probe_volume.h"
+#include "scene/scene.h"
+#include "scene/view.h"
+#include "sh/packing.h"
+
+namespace ddish::raster {
+
+namespace {
+
+enum TimerRange : std::uint32_t { kShadowRange = 0, kForwardRange = 1, kTonemapRange = 2, kRanges = 3 };
+
+double ms_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+}
+
+std::uint32_t choose_samples(const gpu::Device& device, std::uint32_t requested) {
+  if (requested != 0) return requested;  // RenderTarget checks it against the device
+  return (device.info().msaa_sample_counts() & VK_SAMPLE_COUNT_4_BIT) ? 4u : 1u;
+}
+
+ShadowSettings shadow_settings(const RendererOptions& o, const scene::RenderPlan& plan) {
+  ShadowSettings s;
+  s.map_size = o.shadow_map_size;
+  s.cascades = o.cascades;
+  s.enabled = plan.direct_lights && plan.shadow_maps;
+  s.point_shadows = plan.direct_lights && plan.point_shadows;
+  return s;
+}
+
+// The most layers any frame can need: the layout depends on the lights only, not the pose.
+std::uint32_t shadow_capacity(const scene::Scene& scene, const ShadowSettings& s) {
+  std::uint32_t n = 0;
+  for (const scene::Light& l : scene.lights) {
+    if (l.type == scene::LightType::Directional && s.enabled) n += static_cast<std::uint32_t>(s.cascades);
+    if (l.type == scene::LightType::Spot && s.enabled) n += 1;
+    if (l.type == scene::LightType::Point && s.point_shadows) n += 6;
+  }
+  return n;
+}
+
+ForwardPassDesc forward_desc(const RendererOptions& o, const scene::RenderPlan& plan,
+                             std::array<VkDescriptorSetLayout, 4> layouts, std::uint32_t samples,
+                             int volume_order) {
+  ForwardPassDesc d;
+  d.set_layouts = layouts;
+  d.sh_order = o.sh_order > 0 ? o.sh_order : volume_order;
+  d.samples = samples;
+  d.sample_shading = o.sample_shading;
+  d.variant = variant_for(plan);
+  d.variant.probes = o.probes;
+  return d;
+}
+
+}  // namespace
+
+Renderer::Renderer(gpu::Device& device, const scene::Scene& scene, const probes::ProbeVolume& volume,
+                   const RendererOptions& options)
+    : device_(device),
+      options_(options),
+      features_(scene::analyze(scene)),
+      plan_(scene::make_plan(features_)),
+      shadow_settings_(shadow_settings(options, plan_)),
+      samples_(choose_samples(device, options.msaa)),
+      runner_(device),
+      meshes_(device, runner_, scene),
+      materials_(device, runner_, scene, plan_.texture_sampling),
+      frame_(device, static_cast<std::uint32_t>(scene.lights.size()),
+             shadow_capacity(scene, shadow_settings_)),
+      shadows_(device, runner_, shadow_settings_.map_size, shadow_capacity(scene, shadow_settings_),
+               frame_.layout(), materials_.layout(), plan_.alpha_test),
+      probe_textures_(device, volume, options.sh_order),
+      brdf_tables_(device, runner_),
+      tonemapper_(device) {
+  // Checked before the pipelines are built, so the error names the sample count, not a
+  // pipeline failure.
+  const RenderTarget probe_target(device, {.width = 1, .height = 1, .layers = 1, .samples = samples_});
+  (void)probe_target;
+  frame_.bind_shadow_maps(shadows_.view(), shadows_.sampler());
+  forward_ = std::make_unique<ForwardPass>(
+      device, forward_desc(options, plan_,
+                           {frame_.layout(), probe_textures_.layout(), brdf_tables_.layout(),
+                            materials_.layout()},
+                           samples_, volume.sh_order()));
+  if (device.info().timestamps_supported()) timer_.emplace(device, kRanges);
+  // The probe set must hold data before the first frame binds it.
+  probe_textures_.upload(runner_, volume);
+}
+
+ProbeUploadStats Renderer::upload_probes(const probes::ProbeVolume& volume,
+                                         std::span<const std::uint32_t> dirty_probes) {
+  return probe_textures_.upload(runner_, volume, dirty_probes);
+}
+
+ProbeUploadStats Renderer::upload_probes(const probes::ProbeVolume& volume) {
+  return probe_textures_.upload(runner_, volume);
+}
+
+void Renderer::ensure_target(std::uint32_t width, std::uint32_t height, std::uint32_t views) {
+  if (target_ && target_->desc().width == width && target_->desc().height == height &&
+      target_->desc().layers == views)
+    return;
+  target_ = std::make_unique<RenderTarget>(
+      device_, RenderTargetDesc{.width = width, .height = height, .layers = views, .samples = samples_});
+  const VkDeviceSize pixels = VkDeviceSize{width} * height * views;
+  hdr_readback_ = gpu::Buffer(device_, pixels * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              gpu::MemoryUse::readback);
+  display_readback_ = gpu::Buffer(device_, pixels * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                  gpu::MemoryUse::readback);
+}
+
+void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene, std::uint32_t views,
+                            std::uint32_t layers) {
+  if (timer_) timer_->reset(cmd);
+  if (timer_) timer_->begin(cmd, kShadowRange);
+  shadows_.record(cmd, scene, meshes_, materials_, frame_.set(), layers);
+  if (timer_) timer_->end(cmd, kShadowRange);
+
+  target_->begin_frame(cmd);
+  if (timer_) timer_->begin(cmd, kForwardRange);
+  forward_->record(cmd, scene, meshes_, materials_,
+                   {frame_.set(), probe_textures_.set(), brdf_tables_.set()}, *target_, views,
+                   scene.environment());
+  if (timer_) timer_->end(cmd, kForwardRange);
+  target_->end_frame(cmd);
+
+  const gpu::Image& resolved = target_->resolved();
+  for (std::uint32_t v = 0; v < views; ++v)
+    gpu::copy_image_to_buffer(cmd, resolved, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, v, hdr_readback_,
+                              resolved.layer_bytes() * v);
+  gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT);
+  if (timer_) timer_->begin(cmd, kTonemapRange);
+  const auto pixels = static_cast<std::uint32_t>(hdr_readback_.size() / 8);
+  tonemapper_.record(cmd, hdr_readback_, display_readback_, pixels, options_.tone_curve,
+                     options_.exposure);
+  if (timer_) timer_->end(cmd, kTonemapRange);
+  gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+}
+
+bool Renderer::shadows_current(const scene::Scene& scene,
+                               const std::vector<ShadowLayerData>& layers) const {
+  if (layers.empty() || layers.size() != shadow_layers_.size() ||
+      scene.instances.size() != shadow_transforms_.size())
+    return false;
+  if (std::memcmp(layers.data(), shadow_layers_.data(), layers.size() * sizeof(ShadowLayerData)) != 0)
+    return false;
+  for (std::size_t i = 0; i < scene.instances.size(); ++i)
+    if (scene.instances[i].transform != shadow_transforms_[i]) return false;
+  return true;
+}
+
+FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::View> views) {
+  if (views.empty()) throw std::invalid_argument("render: no views");
+  for (const scene::View& v : views)
+    if (v.width != views.front().width || v.height != views.front().height || v.width <= 0 ||
+        v.height <= 0)
+      throw std::invalid_argument("render: every view needs the same positive size");
+  FrameOutput out;
+  auto t0 = std::chrono::steady_clock::now();
+  const auto w = static_cast<std::uint32_t>(views.front().width);
+  const auto h = static_cast<std::uint32_t>(views.front().height);
+  const auto n = static_cast<std::uint32_t>(views.size());
+  ensure_target(w, h, n);
+
+  const ShadowLayout layout = layout_shadows(scene.lights, views, scene.bounds(), shadow_settings_);
+  std::vector<ViewData> view_data;
+  for (const scene::View& v : views) view_data.push_back({v.projection * v.view, glm::vec4(v.eye(), 1.0f)});
+  FrameData frame;
+  frame.environment = glm::vec4(scene.environment(), 0.0f);
+  frame.counts = {static_cast<std::uint32_t>(layout.lights.size()),
+                  static_cast<std::uint32_t>(layout.layers.size()), n, 0u};
+  frame.shadow_params = {1.0f / float(shadows_.map_size()), 1.0f, 0.0f, 0.0f};
+  frame_.update(frame, view_data, layout.lights, layout.layers);
+
+  out.stats.shadows_reused = shadows_current(scene, layout.layers);
+  const auto shadow_layers =
+      out.stats.shadows_reused ? 0u : static_cast<std::uint32_t>(layout.layers.size());
+  double record_ms = 0.0;
+  auto t_submit = t0;
+  runner_.run([&](VkCommandBuffer cmd) {
+    record_frame(cmd, scene, n, shadow_layers);
+    record_ms = ms_since(t0);
+    t_submit = std::chrono::steady_clock::now();
+  });
+  out.stats.record_ms = record_ms;
+  out.stats.execute_ms = ms_since(t_submit);
+  out.stats.shadow_passes = shadows_.passes_recorded();
+  if (shadow_layers > 0) {
+    shadow_layers_ = layout.layers;
+    shadow_transforms_.clear();
+    for (const scene::Instance& inst : scene.instances) shadow_transforms_.push_back(inst.transform);
+  }
+  out.stats.forward_passes = forward_->passes_recorded();
+  out.stats.tonemap_passes = 1;
+  if (timer_) {
+    const std::vector<double> ms = timer_->all_milliseconds();
+    out.stats.shadow_gpu_ms = ms[kShadowRange];
+    out.stats.forward_gpu_ms = ms[kForwardRange];
+    out.stats.tonemap_gpu_ms = ms[kTonemapRange];
+  }
+
+  const auto t_read = std::chrono::steady_clock::now();
+  const std::size_t per_view = std::size_t(w) * h;
+  const auto* halves = static_cast<const std::uint16_t*>(hdr_readback_.mapped());
+  const auto* display = static_cast<const std::uint32_t*>(display_readback_.mapped());
+  for (std::uint32_t v = 0; v < n; ++v) {
+    ViewImage img;
+    img.width = static_cast<int>(w);
+    img.height = static_cast<int>(h);
+    img.linear.resize(per_view);
+    const std::uint16_t* src = halves + per_view * 4 * v;
+    for (std::size_t i = 0; i < per_view; ++i)
+      img.linear[i] = {sh::half_to_float(src[4 * i]), sh::half_to_float(src[4 * i + 1]),
+                       sh::half_to_float(src[4 * i + 2])};
+    img.display.assign(display + per_view * v, display + per_view * (v + 1));
+    out.views.push_back(std::move(img));
+  }
+  out.stats.readback_ms = ms_since(t_read);
+  return out;
+}
+
+}  // namespace ddish::raster

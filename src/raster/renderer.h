@@ -1,0 +1,141 @@
+// The rasterizer of one frame: shadow maps -> forward pass (direct + SH-probe indirect +
+// emission, environment behind) -> tonemap, for a list of views that share one probe volume,
+// read back as linear HDR pixels (for EXR files and error figures) and tonemapped RGBA8 display
+// pixels. Everything view-independent (geometry, materials, probe textures, shadow maps) is made
+// once per frame or once per scene; what multiplies with the views is the forward pass alone.
+//
+//   raster::Renderer renderer(gpu.device(), scene, volume, {});
+//   renderer.upload_probes(volume, dirty);        // after each probe update
+//   raster::FrameOutput out = renderer.render(scene, views);
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "gpu/buffer.h"
+#include "gpu/commands.h"
+#include "gpu/timestamps.h"
+#include "raster/brdf_tables.h"
+#include "raster/forward_pass.h"
+#include "raster/frame_resources.h"
+#include "raster/gpu_meshes.h"
+#include "raster/material_textures.h"
+#include "raster/probe_textures.h"
+#include "raster/render_target.h"
+#include "raster/shadow_layout.h"
+#include "raster/shadow_maps.h"
+#include "raster/tonemap.h"
+#include "scene/features.h"
+
+namespace ddish::gpu {
+class Device;
+}
+
+namespace ddish::scene {
+struct Scene;
+struct View;
+}  // namespace ddish::scene
+
+namespace ddish::probes {
+class ProbeVolume;
+}
+
+namespace ddish::raster {
+
+struct RendererOptions {
+  std::uint32_t msaa = 0;         // samples per pixel; 0: 4 where the device has it, else 1
+  bool sample_shading = false;    // shade every sample (sampleRateShading)
+  int sh_order = 0;               // SH order the shader evaluates; 0: the volume's
+  bool probes = true;             // false: no indirect light (comparisons, debugging)
+  ToneCurve tone_curve = ToneCurve::filmic;
+  float exposure = 1.0f;          // display pixels only; the linear pixels are never scaled
+  std::uint32_t shadow_map_size = 1024;
+  int cascades = 3;               // per directional light, 1..4
+};
+
+struct ViewImage {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec3> linear;        // row 0 at the top, linear radiance
+  std::vector<std::uint32_t> display;   // packed RGBA8 (R in the low byte), sRGB-encoded
+};
+
+struct FrameStats {
+  std::uint32_t shadow_passes = 0;   // depth passes (one per shadow layer) recorded this frame
+  bool shadows_reused = false;       // nothing moved since the last frame: last frame's maps kept
+  std::uint32_t forward_passes = 0;  // one per view
+  std::uint32_t tonemap_passes = 0;
+  // GPU milliseconds from timestamps; 0 where the device has no timestamps.
+  double shadow_gpu_ms = 0.0;
+  double forward_gpu_ms = 0.0;
+  double tonemap_gpu_ms = 0.0;
+  double record_ms = 0.0;   // CPU: writing frame data and recording commands
+  double execute_ms = 0.0;  // CPU wall time from submission until the GPU finished
+  double readback_ms = 0.0; // CPU: converting the read-back pixels
+};
+
+struct FrameOutput {
+  std::vector<ViewImage> views;
+  FrameStats stats;
+};
+
+class Renderer {
+ public:
+  // Uploads the scene's geometry and materials and builds the pipelines for the variant its
+  // SceneFeatures call for. Throws GpuError when the device lacks what the options ask for
+  // (an MSAA count, sample shading) or what the renderer needs (formats, mip blits).
+  Renderer(gpu::Device& device, const scene::Scene& scene, const probes::ProbeVolume& volume,
+           const RendererOptions& options = {});
+
+  // Copies the listed probes (all of them the first time) to the GPU; returns what was sent.
+  ProbeUploadStats upload_probes(const probes::ProbeVolume& volume,
+                                 std::span<const std::uint32_t> dirty_probes);
+  ProbeUploadStats upload_probes(const probes::ProbeVolume& volume);
+
+  // Renders the scene as posed now from every view (all of one size) and reads the images back.
+  FrameOutput render(const scene::Scene& scene, std::span<const scene::View> views);
+
+  const scene::SceneFeatures& features() const { return features_; }
+  const scene::RenderPlan& plan() const { return plan_; }
+  const ShaderVariant& variant() const { return forward_->desc().variant; }
+  std::uint32_t samples() const { return samples_; }
+  int sh_order() const { return forward_->desc().sh_order; }
+
+ private:
+  void ensure_target(std::uint32_t width, std::uint32_t height, std::uint32_t views);
+  void record_frame(VkCommandBuffer cmd, const scene::Scene& scene, std::uint32_t views,
+                    std::uint32_t layers);
+  // Whether the shadow maps already hold `layers` for the scene as posed now.
+  bool shadows_current(const scene::Scene& scene, const std::vector<ShadowLayerData>& layers) const;
+
+  gpu::Device& device_;
+  RendererOptions options_;
+  scene::SceneFeatures features_;
+  scene::RenderPlan plan_;
+  ShadowSettings shadow_settings_;
+  std::uint32_t samples_ = 1;
+  gpu::CommandRunner runner_;
+  GpuMeshes meshes_;
+  MaterialTextures materials_;
+  FrameResources frame_;
+  ShadowMaps shadows_;
+  ProbeTextures probe_textures_;
+  BrdfTables brdf_tables_;
+  std::unique_ptr<ForwardPass> forward_;
+  Tonemapper tonemapper_;
+  std::optional<gpu::TimestampQueries> timer_;
+  std::unique_ptr<RenderTarget> target_;
+  gpu::Buffer hdr_readback_;      // RGBA16F pixels of every view, view after view
+  gpu::Buffer display_readback_;  // packed RGBA8 pixels, same order
+  // What the shadow maps were last rendered for: a static scene seen from a still camera
+  // (every frame of a scene without animation) keeps its maps instead of redrawing them.
+  std::vector<ShadowLayerData> shadow_layers_;
+  std::vector<glm::mat4> shadow_transforms_;
+};
+
+}  // namespace ddish::raster

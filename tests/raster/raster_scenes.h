@@ -1,0 +1,122 @@
+// Scenes built in code for the rasterizer's tests: a UV sphere and a ground quad with one
+// material each, posed and ready to render, plus the probe volumes they are lit by.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "scene/scene.h"
+
+namespace ddish::raster::test {
+
+inline constexpr float kTestPi = 3.14159265358979f;
+
+// A mesh with positions, normals, UVs and tangents filled in (tangents along +x of the UVs).
+inline scene::Mesh uv_sphere(float radius, int segments, int rings) {
+  scene::Mesh m;
+  m.name = "sphere";
+  for (int r = 0; r <= rings; ++r) {
+    const float theta = kTestPi * float(r) / float(rings);
+    for (int s = 0; s <= segments; ++s) {
+      const float phi = 2.0f * kTestPi * float(s) / float(segments);
+      const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
+      m.positions.push_back(n * radius);
+      m.normals.push_back(n);
+      m.uvs.push_back({float(s) / float(segments), float(r) / float(rings)});
+      m.tangents.push_back({-std::sin(phi), 0.0f, -std::cos(phi), 1.0f});
+    }
+  }
+  const auto row = static_cast<std::uint32_t>(segments + 1);
+  for (int r = 0; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const std::uint32_t a = std::uint32_t(r) * row + std::uint32_t(s), b = a + row;
+      // Counter-clockwise seen from outside (glTF front faces).
+      m.indices.insert(m.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+    }
+  for (const glm::vec3& p : m.positions) m.bounds.expand(p);
+  return m;
+}
+
+// A square of side 2 * half in the y = 0 plane facing +y.
+inline scene::Mesh ground_quad(float half) {
+  scene::Mesh m;
+  m.name = "ground";
+  m.positions = {{-half, 0, -half}, {-half, 0, half}, {half, 0, half}, {half, 0, -half}};
+  m.normals.assign(4, {0, 1, 0});
+  m.uvs = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+  m.tangents.assign(4, {1, 0, 0, 1});
+  m.indices = {0, 1, 2, 0, 2, 3};
+  for (const glm::vec3& p : m.positions) m.bounds.expand(p);
+  return m;
+}
+
+// A scene of one mesh instance (at the origin) with one material.
+inline scene::Scene one_mesh_scene(scene::Mesh mesh, const scene::Material& material) {
+  scene::Scene s;
+  s.path = "test:" + mesh.name;
+  mesh.material = 0;
+  s.materials.push_back(material);
+  s.meshes.push_back(std::move(mesh));
+  scene::Node node;
+  node.name = "mesh";
+  node.meshes = {0};
+  s.nodes.push_back(node);
+  s.roots = {0};
+  s.instances.push_back({0, 0, glm::mat4(1.0f)});
+  s.pose(0.0);
+  return s;
+}
+
+inline scene::Material make_material(const glm::vec3& base, float metallic, float roughness) {
+  scene::Material m;
+  m.name = "test";
+  m.base_color = glm::vec4(base, 1.0f);
+  m.metallic = metallic;
+  m.roughness = roughness;
+  return m;
+}
+
+}  // namespace ddish::raster::test
+
+#include <glm/gtc/quaternion.hpp>
+
+namespace ddish::raster::test {
+
+// Adds a mesh instance at `translation` (the mesh is appended with the given material).
+inline void add_instance(scene::Scene& s, scene::Mesh mesh, const scene::Material& material,
+                         const glm::vec3& translation) {
+  mesh.material = static_cast<int>(s.materials.size());
+  s.materials.push_back(material);
+  s.meshes.push_back(std::move(mesh));
+  scene::Node node;
+  node.name = "instance";
+  node.translation = translation;
+  node.meshes = {static_cast<int>(s.meshes.size()) - 1};
+  s.nodes.push_back(node);
+  s.roots.push_back(static_cast<int>(s.nodes.size()) - 1);
+  s.instances.push_back({static_cast<int>(s.meshes.size()) - 1, static_cast<int>(s.nodes.size()) - 1,
+                         glm::mat4(1.0f)});
+  s.pose(s.time);
+}
+
+// Adds a light on its own node at `position` travelling along `direction`.
+inline void add_light(scene::Scene& s, scene::Light light, const glm::vec3& position,
+                      const glm::vec3& direction) {
+  scene::Node node;
+  node.name = light.name;
+  node.translation = position;
+  const glm::vec3 d = glm::normalize(direction);
+  const glm::vec3 up = std::abs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  node.rotation = glm::quatLookAtRH(d, up);  // the node's -Z along d
+  node.light = static_cast<int>(s.lights.size());
+  s.nodes.push_back(node);
+  s.roots.push_back(static_cast<int>(s.nodes.size()) - 1);
+  light.node = static_cast<int>(s.nodes.size()) - 1;
+  s.lights.push_back(light);
+  s.pose(s.time);
+}
+
+}  // namespace ddish::raster::test

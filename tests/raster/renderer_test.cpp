@@ -1,0 +1,184 @@
+// Renderer behaviour that is not about light transport: clear errors for what a device lacks,
+// the shader variants chosen from SceneFeatures, and several views in one frame (the layered
+// target a later multiview path will use) giving exactly the images of separate frames.
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "../gpu/gpu_test.h"
+#include "gpu/commands.h"
+#include "gpu/device.h"
+#include "gpu/error.h"
+#include "probes/probe_grid.h"
+#include "probes/probe_volume.h"
+#include "raster/material_textures.h"
+#include "raster/renderer.h"
+#include "raster_scenes.h"
+#include "scene/scene.h"
+#include "scene/view.h"
+
+namespace ddish::raster::test {
+namespace {
+
+using gpu::test::GpuTest;
+
+class RendererTest : public GpuTest {};
+
+scene::Scene spot_scene() {
+  scene::Scene s = one_mesh_scene(ground_quad(2.0f), make_material({0.6f, 0.6f, 0.6f}, 0.0f, 0.4f));
+  add_instance(s, uv_sphere(0.3f, 24, 12), make_material({0.8f, 0.2f, 0.2f}, 0.0f, 0.9f), {0, 0.8f, 0});
+  scene::Light spot;
+  spot.name = "spot";
+  spot.type = scene::LightType::Spot;
+  spot.intensity = 10.0f;
+  add_light(s, spot, {0.2f, 2.5f, 0.1f}, {0.0f, -1.0f, 0.0f});
+  return s;
+}
+
+TEST_F(RendererTest, UnsupportedSampleCountIsAClearError) {
+  scene::Scene s = spot_scene();
+  const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {2, 2, 2}));
+  // The smallest count the device lacks (lavapipe has 1 and 4, so 2).
+  std::uint32_t missing = 0;
+  for (std::uint32_t c : {2u, 8u, 16u, 32u, 64u})
+    if ((device().info().msaa_sample_counts() & c) == 0) {
+      missing = c;
+      break;
+    }
+  ASSERT_NE(missing, 0u) << "the device has every MSAA count";
+  RendererOptions options;
+  options.msaa = missing;
+  try {
+    Renderer renderer(device(), s, volume, options);
+    FAIL() << "a renderer with " << missing << "x MSAA was made";
+  } catch (const gpu::GpuError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("cannot render with " + std::to_string(missing) + " samples per pixel"),
+              std::string::npos) << what;
+    EXPECT_NE(what.find("supports for colour and depth: 1"), std::string::npos) << what;
+  }
+}
+
+TEST_F(RendererTest, FormatWithoutMipBlitsIsAClearError) {
+  // A texture format the device cannot blit with linear filtering stands in for a device
+  // that lacks mip generation for the formats materials use.
+  gpu::CommandRunner runner(device());
+  const scene::Texture texel{"t", 1, 1, {1, 2, 3, 4}};
+  try {
+    MaterialTextures::upload_texture(device(), runner, texel, VK_FORMAT_R8G8B8A8_SINT);
+    FAIL() << "an integer texture was given linear mipmaps";
+  } catch (const gpu::GpuError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot blit and linearly filter"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(RendererTest, VariantFollowsSceneFeatures) {
+  scene::Scene lit = spot_scene();
+  const probes::ProbeVolume volume(probes::ProbeGrid(lit.bounds(), {2, 2, 2}));
+  Renderer with_light(device(), lit, volume, {.msaa = 1});
+  EXPECT_TRUE(with_light.variant().direct_lights);
+  EXPECT_TRUE(with_light.variant().shadows);
+  EXPECT_TRUE(with_light.variant().specular_probes);  // the ground's roughness is 0.4
+  EXPECT_FALSE(with_light.variant().textures);
+  EXPECT_FALSE(with_light.variant().emission);
+
+  scene::Scene matte = one_mesh_scene(ground_quad(1.0f), make_material({0.5f, 0.5f, 0.5f}, 0.0f, 1.0f));
+  Renderer no_light(device(), matte, volume, {.msaa = 1});
+  EXPECT_FALSE(no_light.variant().direct_lights);
+  EXPECT_FALSE(no_light.variant().shadows);
+  EXPECT_FALSE(no_light.variant().specular_probes);
+}
+
+TEST_F(RendererTest, SampleShadingRendersWhereSupported) {
+  if (!device().features().sample_rate_shading) {
+    // Then asking for it must be refused by name.
+    scene::Scene s = spot_scene();
+    const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {2, 2, 2}));
+    EXPECT_THROW(Renderer(device(), s, volume, {.msaa = 4, .sample_shading = true}), gpu::GpuError);
+    return;
+  }
+  scene::Scene s = spot_scene();
+  const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {2, 2, 2}));
+  Renderer renderer(device(), s, volume, {.msaa = 4, .sample_shading = true});
+  const scene::View view = scene::look_at_view({0, 3, 3}, {0, 0, 0}, {0, 1, 0}, 0.8f, 32, 32);
+  const FrameOutput out = renderer.render(s, std::span(&view, 1));
+  EXPECT_EQ(out.views[0].linear.size(), 32u * 32u);
+  EXPECT_EQ(out.stats.shadow_passes, 1u);
+}
+
+TEST_F(RendererTest, SeveralViewsEqualSeparateFrames) {
+  scene::Scene s = spot_scene();
+  const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {2, 2, 2}));
+  Renderer renderer(device(), s, volume, {.msaa = 4});
+  const std::vector<scene::View> views{
+      scene::look_at_view({0, 3, 3}, {0, 0, 0}, {0, 1, 0}, 0.8f, 48, 32),
+      scene::look_at_view({1, 2, 3}, {0, 0.5f, 0}, {0, 1, 0}, 0.9f, 48, 32)};
+  const FrameOutput both = renderer.render(s, views);
+  ASSERT_EQ(both.views.size(), 2u);
+  EXPECT_EQ(both.stats.forward_passes, 2u);
+  EXPECT_EQ(both.stats.shadow_passes, 1u);  // shadow maps are per frame, not per view
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const FrameOutput one = renderer.render(s, std::span(&views[v], 1));
+    EXPECT_EQ(one.views[0].linear, both.views[v].linear) << "view " << v;
+    EXPECT_EQ(one.views[0].display, both.views[v].display) << "view " << v;
+  }
+  EXPECT_NE(both.views[0].linear, both.views[1].linear);
+}
+
+TEST_F(RendererTest, StaticShadowMapsAreKept) {
+  scene::Scene s = spot_scene();
+  const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {2, 2, 2}));
+  Renderer renderer(device(), s, volume, {.msaa = 1});
+  const scene::View view = scene::look_at_view({0, 3, 3}, {0, 0, 0}, {0, 1, 0}, 0.8f, 32, 32);
+  const FrameOutput first = renderer.render(s, std::span(&view, 1));
+  const FrameOutput second = renderer.render(s, std::span(&view, 1));
+  EXPECT_EQ(first.stats.shadow_passes, 1u);
+  EXPECT_FALSE(first.stats.shadows_reused);
+  EXPECT_EQ(second.stats.shadow_passes, 0u);
+  EXPECT_TRUE(second.stats.shadows_reused);
+  EXPECT_EQ(first.views[0].linear, second.views[0].linear);
+  // Moving the sphere invalidates the maps, and the new shadow shows.
+  s.nodes[1].translation.x += 0.5f;
+  s.pose(s.time);
+  const FrameOutput moved = renderer.render(s, std::span(&view, 1));
+  EXPECT_EQ(moved.stats.shadow_passes, 1u);
+  EXPECT_NE(moved.views[0].linear, second.views[0].linear);
+}
+
+// A masked quad between a spot light and the ground: with alpha below its cutoff it casts no
+// shadow (the masked shadow pipeline discards it), above the cutoff it does.
+TEST_F(RendererTest, MaskedCastersCutTheirShadows) {
+  auto centre_radiance = [&](std::optional<float> occluder_alpha) {
+    scene::Scene s = one_mesh_scene(ground_quad(2.0f), make_material({0.6f, 0.6f, 0.6f}, 0.0f, 0.8f));
+    if (occluder_alpha) {
+      scene::Material leaf = make_material({0.2f, 0.6f, 0.2f}, 0.0f, 0.8f);
+      leaf.base_color.a = *occluder_alpha;
+      leaf.alpha_mode = scene::AlphaMode::Mask;
+      leaf.alpha_cutoff = 0.5f;
+      leaf.double_sided = true;
+      add_instance(s, ground_quad(0.4f), leaf, {0.0f, 1.0f, 0.0f});
+    }
+    scene::Light spot;
+    spot.name = "spot";
+    spot.type = scene::LightType::Spot;
+    spot.intensity = 10.0f;
+    add_light(s, spot, {0.0f, 2.5f, 0.0f}, {0.0f, -1.0f, 0.0f});
+    const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {2, 2, 2}));
+    Renderer renderer(device(), s, volume, {.msaa = 1, .probes = false});
+    // The view ray through the centre of the 33x33 image hits the ground at the origin.
+    const scene::View view = scene::look_at_view({0, 3.5f, 3.5f}, {0, 0, 0}, {0, 1, 0}, 0.8f, 33, 33);
+    const FrameOutput out = renderer.render(s, std::span(&view, 1));
+    return out.views[0].linear[16 * 33 + 16];
+  };
+  const glm::vec3 open = centre_radiance(std::nullopt);
+  const glm::vec3 cut = centre_radiance(0.3f);
+  const glm::vec3 solid = centre_radiance(0.9f);
+  ASSERT_GT(open.g, 0.1f);
+  EXPECT_NEAR(cut.g, open.g, 0.01f * open.g) << "a cut-out caster still shadows";
+  EXPECT_LT(solid.g, 0.05f * open.g) << "a kept caster casts no shadow";
+}
+
+}  // namespace
+}  // namespace ddish::raster::test
