@@ -1,0 +1,66 @@
+#include "probes/budget.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace ddish::probes {
+
+void check_budget_options(const BudgetOptions& o) {
+  if (!std::isfinite(o.budget_ms))
+    throw std::invalid_argument("frame budget must be a finite number of milliseconds");
+  auto weight = [](double w, const char* what) {
+    if (!(w > 0.0 && w <= 1.0))
+      throw std::invalid_argument(std::string(what) + " must be in (0, 1], got " +
+                                  std::to_string(w));
+  };
+  weight(o.cost_smoothing, "cost smoothing");
+  weight(o.rest_smoothing, "rest-of-frame smoothing");
+  if (!(o.gain >= 0.0 && o.gain < 1.0))
+    throw std::invalid_argument("budget gain must be in [0, 1), got " + std::to_string(o.gain));
+  if (!(o.initial_ms_per_path > 0.0) || !std::isfinite(o.initial_ms_per_path))
+    throw std::invalid_argument("initial ms per path must be > 0");
+}
+
+BudgetController::BudgetController(const BudgetOptions& options)
+    : options_(options), ms_per_path_(options.initial_ms_per_path) {
+  check_budget_options(options);
+}
+
+double BudgetController::probe_ms_allowance() const {
+  if (!limited()) return std::numeric_limits<double>::infinity();
+  return std::max(0.0, options_.budget_ms - rest_ms_ - options_.gain * error_ms_);
+}
+
+std::uint64_t BudgetController::path_allowance() const {
+  if (!limited()) return std::numeric_limits<std::uint64_t>::max();
+  const double paths = std::floor(probe_ms_allowance() / ms_per_path_);
+  // A cost per path of ~0 (a frame that measured nothing) must not overflow the conversion.
+  if (!(paths < 9.0e18)) return std::numeric_limits<std::uint64_t>::max();
+  return std::uint64_t(paths);
+}
+
+void BudgetController::observe(const FrameCost& c) {
+  if (!std::isfinite(c.frame_ms) || !std::isfinite(c.probe_ms) || c.frame_ms < 0.0 ||
+      c.probe_ms < 0.0)
+    return;
+  const double rest = std::max(0.0, c.frame_ms - c.probe_ms);
+  // The first frame replaces the zero start instead of averaging with it.
+  rest_ms_ = frames_ == 0 ? rest : rest_ms_ + options_.rest_smoothing * (rest - rest_ms_);
+  if (c.paths > 0 && c.probe_ms > 0.0) {
+    const double measured = c.probe_ms / double(c.paths);
+    ms_per_path_ = traced_ ? ms_per_path_ + options_.cost_smoothing * (measured - ms_per_path_)
+                           : measured;
+    const double mrays = double(c.rays) / c.probe_ms * 1e-3;
+    mrays_per_second_ = traced_ ? mrays_per_second_ +
+                                      options_.cost_smoothing * (mrays - mrays_per_second_)
+                                : mrays;
+    traced_ = true;
+  }
+  error_ms_ = limited() ? c.frame_ms - options_.budget_ms : 0.0;
+  ++frames_;
+}
+
+}  // namespace ddish::probes
