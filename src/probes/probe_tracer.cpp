@@ -123,7 +123,8 @@ UpdateStats ProbeTracer::update(ProbeVolume& volume, std::span<const std::uint32
         }
       }
       // Each probe's state and coefficients belong to exactly one task: no locking needed.
-      volume.accumulate(p, estimate, options_.samples, options_.hysteresis);
+      volume.accumulate(p, estimate, options_.samples, options_.hysteresis, options_.blend,
+                        options_.reference_samples);
     }
     invalid.fetch_add(local_invalid, std::memory_order_relaxed);
   });

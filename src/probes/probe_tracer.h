@@ -33,6 +33,8 @@ struct UpdateOptions {
   float hysteresis = kDefaultHysteresis;
   std::uint64_t seed = 0;
   float backface_threshold = kInsideBackfaceFraction;
+  BlendRule blend = BlendRule::per_update;  // how an update is weighed into the average
+  std::uint32_t reference_samples = 0;      // S of the per-sample rule; 0: samples
 };
 
 // Throws std::invalid_argument for samples == 0, hysteresis outside [0, 1) or a threshold

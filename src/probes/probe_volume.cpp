@@ -34,12 +34,16 @@ void ProbeVolume::set_sh(std::uint32_t i, const sh::ShRgb& coefficients_in) {
 }
 
 void ProbeVolume::accumulate(std::uint32_t i, const sh::ShRgb& estimate, std::uint64_t samples,
-                             float hysteresis) {
+                             float hysteresis, BlendRule rule, std::uint32_t reference_samples) {
   ProbeState& s = states_[i];
+  // The weight depends on the history before this update: its updates, samples and how many
+  // volume updates passed since the probe was last blended (begin_update aged it already).
+  const BlendHistory history{s.updates, s.samples, std::max<std::uint32_t>(s.age, 1u)};
+  const float w = blend_weight(rule, history, samples, hysteresis,
+                               reference_samples ? reference_samples : std::uint32_t(samples));
   s.updates += 1;
   s.samples += samples;
   s.age = 0;
-  const float w = blend_weight(s.updates, hysteresis);
   std::span<glm::vec3> avg = coefficients(i);
   for (std::size_t j = 0; j < avg.size(); ++j) {
     const glm::vec3 e = int(j) < estimate.count() ? estimate.c[j] : glm::vec3(0.0f);

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "probes/accumulation.h"
 #include "probes/probe_grid.h"
 #include "sh/sh_rgb.h"
 
@@ -69,8 +70,11 @@ class ProbeVolume {
 
   // Blends a new estimate into probe i's running average with the weight of its next update
   // (accumulation.h) and counts the update and its samples. Bands above the order are ignored.
+  // rule and reference_samples choose the weight (accumulation.h); reference_samples 0 means
+  // `samples` (the per-sample rule then equals the per-update rule at full samples).
   void accumulate(std::uint32_t i, const sh::ShRgb& estimate, std::uint64_t samples,
-                  float hysteresis);
+                  float hysteresis, BlendRule rule = BlendRule::per_update,
+                  std::uint32_t reference_samples = 0);
 
   // Marks probe i inactive (inside geometry or not) and zeroes its coefficients and counts, so
   // an interpolation that ignored the flag would still add nothing.

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "probes/accumulation.h"
+#include "probes/probe_volume.h"
+#include "sh/sh_rgb.h"
 
 using namespace ddish::probes;
 
@@ -84,4 +86,22 @@ TEST(SampleBlend, RuleNames) {
   EXPECT_EQ(parse_blend_rule("per-sample"), BlendRule::per_sample);
   EXPECT_STREQ(blend_rule_name(BlendRule::per_sample), "per-sample");
   EXPECT_THROW(parse_blend_rule("samples"), std::invalid_argument);
+}
+
+// The volume applies the rule it is given: a half-sample update of a probe with S samples of
+// history gets n / (h + n) = 128 / (256 + 128) = 1/3 under per_sample and 1/2 under per_update.
+TEST(VolumeBlend, PerSampleRuleWeighsSamples) {
+  using namespace ddish;
+  for (auto rule : {probes::BlendRule::per_sample, probes::BlendRule::per_update}) {
+    probes::ProbeVolume volume(probes::ProbeGrid(), 2);
+    sh::ShRgb one(2), four(2);
+    one.c[0] = glm::vec3(1.0f);
+    four.c[0] = glm::vec3(4.0f);
+    volume.begin_update();
+    volume.accumulate(0, one, 256, 0.95f, rule, 256);
+    volume.begin_update();
+    volume.accumulate(0, four, 128, 0.95f, rule, 256);
+    const float expected_w = rule == probes::BlendRule::per_sample ? 1.0f / 3.0f : 0.5f;
+    EXPECT_NEAR(volume.coefficients(0)[0].x, 1.0f + expected_w * 3.0f, 1e-6f);
+  }
 }
