@@ -87,8 +87,8 @@ glm::vec<N, float> node_vector(const gltf::Context& ctx, const std::vector<doubl
   if (v.size() != std::size_t(N)) ctx.fail(what + " must have " + std::to_string(N) + " values");
   glm::vec<N, float> out;
   for (int i = 0; i < N; ++i) {
-    if (!std::isfinite(v[std::size_t(i)])) ctx.fail(what + " is not finite");
-    out[i] = float(v[std::size_t(i)]);
+    out[i] = float(v[std::size_t(i)]);  // a finite double beyond float's range becomes Inf
+    if (!std::isfinite(out[i])) ctx.fail(what + " is not finite");
   }
   return out;
 }
@@ -121,8 +121,8 @@ void load_nodes(const gltf::Context& ctx, const std::vector<std::vector<int>>& m
       if (gn.matrix.size() != 16) ctx.fail(what + ": matrix must have 16 values");
       glm::mat4 mat;
       for (int k = 0; k < 16; ++k) {
-        if (!std::isfinite(gn.matrix[std::size_t(k)])) ctx.fail(what + ": matrix is not finite");
         mat[k / 4][k % 4] = float(gn.matrix[std::size_t(k)]);
+        if (!std::isfinite(mat[k / 4][k % 4])) ctx.fail(what + ": matrix is not finite");
       }
       decompose(mat, node);
     } else {

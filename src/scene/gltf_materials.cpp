@@ -8,7 +8,20 @@ namespace ddish::scene::gltf {
 
 namespace {
 
-float finite_or(double v, float fallback) { return std::isfinite(v) ? float(v) : fallback; }
+// An optional factor: its value as a float, or the fallback where it is not finite (the check is
+// on the narrowed float, which a finite double beyond float's range would turn into Inf).
+float finite_or(double v, float fallback) {
+  const float f = float(v);
+  return std::isfinite(f) ? f : fallback;
+}
+
+// A radiometric quantity (light intensity, emissive strength): a non-finite value is an error,
+// never replaced by a default, since it would otherwise put Inf or NaN into every renderer.
+float finite_number(const Context& ctx, double v, const std::string& what) {
+  const float f = float(v);
+  if (!std::isfinite(f)) ctx.fail(what + " is not finite");
+  return f;
+}
 
 template <int N>
 glm::vec<N, float> vector_or(const Context& ctx, const std::vector<double>& v,
@@ -18,8 +31,8 @@ glm::vec<N, float> vector_or(const Context& ctx, const std::vector<double>& v,
     ctx.fail(what + " has " + std::to_string(v.size()) + " values, expected " + std::to_string(N));
   glm::vec<N, float> out;
   for (int i = 0; i < N; ++i) {
-    if (!std::isfinite(v[std::size_t(i)])) ctx.fail(what + " is not finite");
-    out[i] = float(v[std::size_t(i)]);
+    out[i] = float(v[std::size_t(i)]);  // a finite double beyond float's range becomes Inf
+    if (!std::isfinite(out[i])) ctx.fail(what + " is not finite");
   }
   return out;
 }
@@ -82,10 +95,11 @@ void load_materials(const Context& ctx, Scene& scene) {
     mat.metallic = glm::clamp(finite_or(pbr.metallicFactor, 1.0f), 0.0f, 1.0f);
     mat.roughness = glm::clamp(finite_or(pbr.roughnessFactor, 1.0f), 0.0f, 1.0f);
     mat.emissive = vector_or<3>(ctx, gm.emissiveFactor, glm::vec3(0.0f), what + " emissiveFactor");
-    mat.emissive_strength =
-        std::max(0.0f, finite_or(extension_number(gm.extensions, "KHR_materials_emissive_strength",
-                                                  "emissiveStrength", 1.0),
-                                 1.0f));
+    mat.emissive_strength = std::max(
+        0.0f, finite_number(ctx,
+                            extension_number(gm.extensions, "KHR_materials_emissive_strength",
+                                             "emissiveStrength", 1.0),
+                            what + " emissiveStrength"));
     mat.normal_scale = finite_or(gm.normalTexture.scale, 1.0f);
     mat.occlusion_strength = glm::clamp(finite_or(gm.occlusionTexture.strength, 1.0f), 0.0f, 1.0f);
     if (gm.alphaMode == "MASK")
@@ -131,7 +145,9 @@ Light make_light(const Context& ctx, int index, int node) {
   else
     ctx.fail(what + ": unknown light type '" + gl.type + "'");
   light.color = vector_or<3>(ctx, gl.color, glm::vec3(1.0f), what + " color");
-  light.intensity = finite_or(gl.intensity, 1.0f);
+  // A non-finite intensity (1e400 in the file parses as infinity, and 1e39 overflows float)
+  // is an error, not a silent 1.
+  light.intensity = finite_number(ctx, gl.intensity, what + ": intensity");
   light.range = std::max(0.0f, finite_or(gl.range, 0.0f));
   if (light.type == LightType::Spot) {
     light.inner_cone = finite_or(gl.spot.innerConeAngle, 0.0f);

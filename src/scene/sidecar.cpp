@@ -21,7 +21,9 @@ glm::vec3 vec3_of(const json& j, const std::string& what, const std::string& fil
   glm::vec3 v;
   for (int i = 0; i < 3; ++i) {
     const json& e = j[std::size_t(i)];
-    if (!e.is_number() || !std::isfinite(e.get<double>()))
+    // A number beyond float's range (1e39, or 1e400 that the parser reads as infinity) would
+    // become Inf once narrowed: check the float that is kept, not the double that was read.
+    if (!e.is_number() || !std::isfinite(e.get<double>()) || !std::isfinite(e.get<float>()))
       throw LoadError(file, what + " must be an array of 3 finite numbers");
     v[i] = e.get<float>();
   }
