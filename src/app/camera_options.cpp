@@ -20,12 +20,14 @@ void add_camera_options(CLI::App& cmd, CameraArgs& args) {
          "--fov", [a](float deg) { a->fov = deg; },
          "vertical field of view in degrees (default: the camera's, or 45)")
       ->check(CLI::Range(0.1f, 179.0f));
-  cmd.add_option("--width", args.width, "image width in pixels")
+  cmd.add_option("--width", args.width, "image width in pixels (with --display: one view's)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 16384));
-  cmd.add_option("--height", args.height, "image height in pixels")
+      ->check(CLI::Range(1, 16384))
+      ->each([a](const std::string&) { a->width_given = true; });
+  cmd.add_option("--height", args.height, "image height in pixels (with --display: one view's)")
       ->capture_default_str()
-      ->check(CLI::Range(1, 16384));
+      ->check(CLI::Range(1, 16384))
+      ->each([a](const std::string&) { a->height_given = true; });
 }
 
 std::optional<std::vector<float>> parse_pose(const std::string& text) {
@@ -60,18 +62,20 @@ const scene::Camera* find_camera(const scene::Scene& s, const std::string& name)
   return nullptr;
 }
 
-scene::View make_view(const scene::Scene& s, const CameraArgs& args) {
+scene::Camera resolve_camera(const scene::Scene& s, const CameraArgs& args) {
   if (auto pose = parse_pose(args.camera)) {
     const std::vector<float>& p = *pose;
-    glm::vec3 eye(p[0], p[1], p[2]), target(p[3], p[4], p[5]), up(p[6], p[7], p[8]);
-    glm::vec3 fwd = target - eye;
+    const glm::vec3 eye(p[0], p[1], p[2]), target(p[3], p[4], p[5]), up(p[6], p[7], p[8]);
+    const glm::vec3 fwd = target - eye;
     if (glm::length(fwd) == 0.0f || glm::length(glm::cross(fwd, up)) == 0.0f)
       throw std::invalid_argument("--camera: eye equals target or up is parallel to the view");
-    scene::View v = scene::look_at_view(eye, target, up,
-                                        glm::radians(args.fov.value_or(kDefaultFovDeg)),
-                                        args.width, args.height);
-    v.name = "camera";
-    return v;
+    scene::Camera c;
+    c.name = "camera";
+    c.eye = eye;
+    c.forward = fwd;
+    c.up = up;
+    c.yfov = glm::radians(args.fov.value_or(kDefaultFovDeg));
+    return c;
   }
   const scene::Camera* cam = nullptr;
   if (!args.camera.empty()) {
@@ -83,7 +87,11 @@ scene::View make_view(const scene::Scene& s, const CameraArgs& args) {
   }
   scene::Camera c = *cam;
   if (args.fov) c.yfov = glm::radians(*args.fov);
-  return scene::camera_view(c, args.width, args.height);
+  return c;
+}
+
+scene::View make_view(const scene::Scene& s, const CameraArgs& args) {
+  return scene::camera_view(resolve_camera(s, args), args.width, args.height);
 }
 
 }  // namespace ddish::app

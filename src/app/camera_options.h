@@ -7,16 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene.h"
 #include "scene/view.h"
 
 namespace CLI {
 class App;
 }
-
-namespace ddish::scene {
-struct Camera;
-struct Scene;
-}  // namespace ddish::scene
 
 namespace ddish::app {
 
@@ -27,6 +23,10 @@ struct CameraArgs {
   std::optional<float> fov;  // degrees, vertical
   int width = 512;
   int height = 512;
+  // Whether --width / --height were given: with a display profile they override its tile size,
+  // without them the profile's size stands.
+  bool width_given = false;
+  bool height_given = false;
 };
 
 // Registers --camera, --fov, --width and --height (with `args`' sizes as defaults).
@@ -38,6 +38,11 @@ std::optional<std::vector<float>> parse_pose(const std::string& text);
 
 // A camera by its name or its node's name; nullptr when there is none.
 const scene::Camera* find_camera(const scene::Scene& scene, const std::string& name);
+
+// The scene camera the options describe, posed now (a camera node follows its animation), with
+// --fov applied; --camera eye,target,up makes a camera named "camera". Throws
+// std::invalid_argument naming what is wrong.
+scene::Camera resolve_camera(const scene::Scene& scene, const CameraArgs& args);
 
 // The view the options describe for the scene as posed now (a camera node follows its
 // animation). Throws std::invalid_argument naming what is wrong.

@@ -1,9 +1,15 @@
-// ddish reference SCENE --spp N --out DIR [options]
+// ddish reference SCENE --spp N --out DIR [--display single|stereo|PROFILE] [options]
 //
-// A converged path-traced image of one view of the scene (trace/reference.h): the ground truth
-// every other figure is measured against. Writes DIR/reference.exr (linear), DIR/reference.png
-// (display: clamped, sRGB-encoded, no tone curve) and DIR/reference.json (how it was made), and
-// with --convergence the error of the image after 1, 4, 16, ... spp against the final image.
+// Converged path-traced images of the views of a frame (trace/reference.h): the ground truth
+// every other figure is measured against. The views are built exactly as `ddish render` builds
+// them (view_options.h: same camera, same focal distance rule, same profile overrides) and
+// written by the same FrameWriter (frame_outputs.h), so an image and its reference share names:
+// for one view DIR/reference.exr (linear) and DIR/reference.png (display: clamped,
+// sRGB-encoded, no tone curve); for a light-field or grid display the quilt
+// NAME_qs{cols}x{rows}a{aspect}.exr/.png, for stereo the side-by-side pair, and in both cases
+// every view as DIR/view_NN.exr/.png. DIR/reference.json says how it was made. --time-limit
+// applies to each view. With --convergence (one view only) the error of the image after 1, 4,
+// 16, ... spp against the final image.
 //
 // Reading the convergence CSV: the image after N spp holds the first N of the final image's M
 // samples per pixel, so the two are correlated and the measured MSE is sigma^2 (1/N - 1/M)
@@ -13,6 +19,7 @@
 // (display).
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -29,6 +36,8 @@
 
 #include "app/camera_options.h"
 #include "app/commands.h"
+#include "app/frame_outputs.h"
+#include "app/view_options.h"
 #include "metrics/errors.h"
 #include "metrics/image.h"
 #include "metrics/image_io.h"
@@ -46,6 +55,7 @@ namespace fs = std::filesystem;
 struct ReferenceArgs {
   std::string scene;
   CameraArgs view;  // --camera, --fov, --width, --height (shared with `ddish render`)
+  DisplayArgs display;  // --display, --views, --focal-distance (shared with `ddish render`)
   int spp = 256;
   double time_limit = 0.0;
   std::uint64_t seed = 1;
@@ -115,10 +125,26 @@ void write_convergence(const fs::path& path, const std::vector<ConvergencePoint>
   if (!csv) throw std::runtime_error("cannot write " + path.string());
 }
 
+nlohmann::ordered_json view_meta(const scene::View& view, const trace::ReferenceImage& r) {
+  nlohmann::ordered_json v;
+  v["view"] = view.name;
+  v["spp"] = r.spp;
+  v["time_limited"] = r.time_limited;
+  v["seconds"] = r.seconds;
+  v["rays"] = r.rays;
+  v["nonfinite_samples"] = r.nonfinite_samples;
+  v["invalid_paths"] = r.invalid_paths;
+  return v;
+}
+
 int run_reference(const ReferenceArgs& args) {
   parse_pose(args.view.camera);  // a malformed --camera fails before the (possibly slow) load
+  const DisplayChoice choice = resolve_display(args.display, args.view);
+  if (!choice.single() && !args.convergence.empty())
+    throw std::invalid_argument("--convergence measures one view; it cannot be used with --display " +
+                                args.display.display);
   const scene::Scene s = scene::load_scene(args.scene);
-  const scene::View view = make_view(s, args.view);
+  const display::ViewSet set = make_frame_views(s, choice, args.display, args.view);
   fs::path out_dir(args.out);
   std::error_code ec;
   fs::create_directories(out_dir, ec);
@@ -147,46 +173,69 @@ int run_reference(const ReferenceArgs& args) {
     if (!args.convergence.empty() && is_power_of_four(img.spp) && img.spp < args.spp)
       points.push_back({img.spp, img.seconds, to_image(img)});
   };
-  const trace::ReferenceImage result = trace::render_reference(tracer, view, options, callbacks);
 
-  const metrics::Image image = to_image(result);
-  metrics::write_exr(out_dir / "reference.exr", image);
-  metrics::write_png(out_dir / "reference.png", image);
+  FrameImages images;
+  nlohmann::ordered_json per_view = nlohmann::ordered_json::array();
+  trace::ReferenceImage totals;  // summed over the views; spp is the least any view reached
+  totals.spp = args.spp;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    if (set.size() > 1) std::fprintf(stderr, "reference: view %zu/%zu\n", i + 1, set.size());
+    const trace::ReferenceImage r = trace::render_reference(tracer, set.views[i], options, callbacks);
+    images.linear.push_back(to_image(r));
+    per_view.push_back(view_meta(set.views[i], r));
+    totals.spp = std::min(totals.spp, r.spp);
+    totals.time_limited = totals.time_limited || r.time_limited;
+    totals.seconds += r.seconds;
+    totals.rays += r.rays;
+    totals.nonfinite_samples += r.nonfinite_samples;
+    totals.invalid_paths += r.invalid_paths;
+  }
+  // The reference has no tone curve: its PNG is the linear image clamped and sRGB-encoded.
+  images.display = images.linear;
+  const FrameWriter writer(set, {.dir = out_dir,
+                                 .stem = fs::path(args.scene).stem().string(),
+                                 .per_view = !choice.single(),
+                                 .calibration = std::nullopt});
+  const std::vector<fs::path> written = writer.write(images, "reference", "");
   if (!args.convergence.empty()) {
     // A time-limited run ends below --spp: drop the points at or above what it reached.
-    std::erase_if(points, [&](const ConvergencePoint& p) { return p.spp >= result.spp; });
-    write_convergence(args.convergence, points, image);
+    std::erase_if(points, [&](const ConvergencePoint& p) { return p.spp >= totals.spp; });
+    write_convergence(args.convergence, points, images.linear.front());
   }
 
-  const double mrays = result.seconds > 0.0 ? double(result.rays) / result.seconds * 1e-6 : 0.0;
+  const scene::View& view = set.views.front();
+  const double mrays = totals.seconds > 0.0 ? double(totals.rays) / totals.seconds * 1e-6 : 0.0;
   nlohmann::ordered_json meta;
   meta["scene"] = args.scene;
+  meta["display"] = set.name;
   meta["view"] = view.name;
+  meta["views"] = set.size();
   meta["width"] = view.width;
   meta["height"] = view.height;
-  meta["spp"] = result.spp;
+  meta["spp"] = totals.spp;
   meta["spp_requested"] = args.spp;
-  meta["time_limited"] = result.time_limited;
+  meta["time_limited"] = totals.time_limited;
   meta["seed"] = args.seed;
   meta["bounces"] = args.bounces;
-  meta["seconds"] = result.seconds;
-  meta["rays"] = result.rays;
+  meta["seconds"] = totals.seconds;
+  meta["rays"] = totals.rays;
   meta["mrays_per_s"] = mrays;
-  meta["nonfinite_samples"] = result.nonfinite_samples;
-  meta["invalid_paths"] = result.invalid_paths;
+  meta["nonfinite_samples"] = totals.nonfinite_samples;
+  meta["invalid_paths"] = totals.invalid_paths;
+  if (set.size() > 1) meta["per_view"] = per_view;
   std::ofstream meta_file(out_dir / "reference.json");
   meta_file << meta.dump(2) << '\n';
   if (!meta_file) throw std::runtime_error("cannot write " + (out_dir / "reference.json").string());
 
-  std::printf("reference: %dx%d, %d spp%s in %.2f s, %.2f Mrays/s (%llu rays)\n", view.width,
-              view.height, result.spp, result.time_limited ? " (time limit)" : "", result.seconds,
-              mrays, static_cast<unsigned long long>(result.rays));
-  if (result.nonfinite_samples > 0 || result.invalid_paths > 0)
+  std::printf("reference: %zu view%s of %dx%d, %d spp%s in %.2f s, %.2f Mrays/s (%llu rays)\n",
+              set.size(), set.size() == 1 ? "" : "s", view.width, view.height, totals.spp,
+              totals.time_limited ? " (time limit)" : "", totals.seconds, mrays,
+              static_cast<unsigned long long>(totals.rays));
+  if (totals.nonfinite_samples > 0 || totals.invalid_paths > 0)
     std::printf("reference: %llu NaN/Inf samples dropped, %llu invalid paths zeroed by the tracer\n",
-                static_cast<unsigned long long>(result.nonfinite_samples),
-                static_cast<unsigned long long>(result.invalid_paths));
-  std::printf("wrote %s, %s\n", (out_dir / "reference.exr").string().c_str(),
-              (out_dir / "reference.png").string().c_str());
+                static_cast<unsigned long long>(totals.nonfinite_samples),
+                static_cast<unsigned long long>(totals.invalid_paths));
+  for (const fs::path& p : written) std::printf("wrote %s\n", p.string().c_str());
   if (!args.convergence.empty()) std::printf("wrote %s\n", args.convergence.c_str());
   return 0;
 }
@@ -194,11 +243,12 @@ int run_reference(const ReferenceArgs& args) {
 Action add_reference(CLI::App& root) {
   auto args = std::make_shared<ReferenceArgs>();
   CLI::App* cmd = root.add_subcommand(
-      "reference", "converged path-traced image (ground truth) of one view of a scene");
+      "reference", "converged path-traced images (ground truth) of the views of a display");
   cmd->add_option("scene", args->scene, "glTF scene (.gltf or .glb)")
       ->required()
       ->check(CLI::ExistingFile);
   add_camera_options(*cmd, args->view);
+  add_display_options(*cmd, args->display);
   cmd->add_option("--spp", args->spp, "samples per pixel")
       ->capture_default_str()
       ->check(CLI::Range(1, 1 << 24));

@@ -1,21 +1,27 @@
-// ddish render SCENE [--camera NODE|eye,target,up] [--fov DEG] [--width W --height H]
+// ddish render SCENE [--display single|stereo|PROFILE] [--views N] [--focal-distance M]
+//                    [--per-view] [--calibration FILE.json]
+//                    [--camera NODE|eye,target,up] [--fov DEG] [--width W --height H]
 //                    [--frames N] [--every] [--fps F] [--time T] [--out DIR] [--timings FILE]
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
 //                    [--probe-samples N] [--hysteresis A] [--bounces N] [--msaa 1|4]
 //                    [--sample-shading] [--tonemap linear|filmic] [--no-indirect]
 //                    [--device N] [--seed N]
 //
-// The main job for one view: each frame poses the scene at t = time + k / fps, updates the
-// probes in-process, uploads those that changed, rasterizes (raster::Renderer) and writes the
-// last frame (every frame with --every) as DIR/frame_NNNN.png (display, tone curve of
-// --tonemap) and DIR/frame_NNNN.exr (linear radiance, no curve: what error figures compare).
-// Progress goes to stderr, one line per frame; --timings writes per-frame stage milliseconds.
+// The main job: each frame poses the scene at t = time + k / fps, updates the probes in-process
+// ONCE, uploads those that changed, rasterizes all N views of the display (view_options.h) in one
+// Renderer::render call, and writes the last frame (every frame with --every) as frame_outputs.h
+// says: DIR/frame_NNNN.png/.exr for the single view, a quilt for light-field and grid displays,
+// a side-by-side pair for stereo (PNG: display values, tone curve of --tonemap; EXR: linear).
+// Progress goes to stderr, one line per frame; --timings writes render_timings.h's JSON.
+// With validation on (DDISH_VALIDATION=1) any validation error makes the run exit 1.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -23,7 +29,11 @@
 #include "app/camera_options.h"
 #include "app/commands.h"
 #include "app/frame_loop.h"
+#include "app/frame_outputs.h"
 #include "app/probe_options.h"
+#include "app/render_timings.h"
+#include "app/view_options.h"
+#include "display/calibration.h"
 #include "gpu/context.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
@@ -42,6 +52,9 @@ namespace fs = std::filesystem;
 struct RenderArgs {
   std::string scene;
   CameraArgs view{.width = 512, .height = 512};
+  DisplayArgs display;
+  bool per_view = false;
+  std::string calibration;
   ProbeArgs probe;
   int frames = 1;
   bool every = false;
@@ -66,15 +79,33 @@ void check(const RenderArgs& a) {
     throw std::invalid_argument(fmt::format("--msaa must be 1, 2, 4, 8 or 16, got {}", a.msaa));
 }
 
-int run_render(const RenderArgs& a) {
-  check(a);  // before loading: a bad option should not cost a scene load
-  scene::Scene s = scene::load_scene(a.scene);
-  s.pose(a.time);
-  const Placement placement = place_probes(a.probe, s);
-  std::error_code ec;
-  fs::create_directories(a.out, ec);
-  if (ec || !fs::is_directory(a.out)) throw std::runtime_error("cannot create output directory " + a.out);
+// The frame's progress line on stderr.
+void print_progress(const FrameReport& r, int frames) {
+  const metrics::FrameTimings& t = *r.timings;
+  const FrameCounts& c = r.counts;
+  std::fprintf(stderr,
+               "frame %d/%d t=%.3f s: %u views; probes %.1f ms (%llu update, %u traced, %u "
+               "uploaded in %.1f ms), raster %.1f ms = %.2f ms/view (GPU shadow %.1f + forward "
+               "%.1f + tonemap %.1f), output %.1f ms, total %.1f ms\n",
+               r.frame + 1, frames, r.t, c.views, t.stage_ms("probe_update"),
+               static_cast<unsigned long long>(c.probe_updates), c.probes_traced,
+               c.probes_uploaded, t.stage_ms("upload"), raster_ms(t),
+               raster_ms(t) / std::max(1u, c.views), t.stage_ms("shadow_gpu"),
+               t.stage_ms("forward_gpu"), t.stage_ms("tonemap_gpu"), t.stage_ms("output"),
+               t.total_ms());
+}
 
+struct GpuRun {
+  FrameLoopResult result;
+  bool validation = false;  // the validation layer was on
+  std::shared_ptr<const gpu::ValidationLog> log;
+};
+
+// Everything that holds Vulkan objects lives in here, so that by the time it returns the device
+// and instance are destroyed and what the layer says about them (leaks) is in the log.
+GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& placement,
+                     const DisplayChoice& choice, const display::ViewSet& first,
+                     const FrameWriter& writer) {
   trace::PathOptions path_options;
   path_options.max_bounces = a.probe.bounces;
   trace::Tracer tracer(s, path_options);
@@ -82,7 +113,10 @@ int run_render(const RenderArgs& a) {
   probes::TracerSource source(tracer);
   const probes::ProbeTracer probe_tracer(source, update_options(a.probe));
 
+  GpuRun run;
   gpu::Context gpu({.device_index = a.device});
+  run.validation = gpu.instance().validation_enabled();
+  run.log = gpu.instance().shared_validation();
   raster::RendererOptions ro;
   ro.msaa = a.msaa;
   ro.sample_shading = a.sample_shading;
@@ -91,34 +125,65 @@ int run_render(const RenderArgs& a) {
   raster::Renderer renderer(gpu.device(), s, volume, ro);
   const auto& grid = placement.grid;
   std::fprintf(stderr,
-               "render: %s, %zu triangles on %s; %dx%d, %u samples/pixel; probes %dx%dx%d (%s), L%d\n",
-               s.path.c_str(), s.triangle_count(), gpu.device().info().name.c_str(), a.view.width,
-               a.view.height, renderer.samples(), grid.counts().x, grid.counts().y, grid.counts().z,
-               placement.how.c_str(), renderer.sh_order());
+               "render: %s, %zu triangles on %s; display %s: %zu views of %dx%d (%dx%d atlas %dx%d), "
+               "%u samples/pixel; probes %dx%dx%d (%s), L%d\n",
+               s.path.c_str(), s.triangle_count(), gpu.device().info().name.c_str(),
+               first.name.c_str(), first.size(), first.layout.tile_width,
+               first.layout.tile_height, first.layout.columns, first.layout.rows,
+               first.layout.width, first.layout.height, renderer.samples(), grid.counts().x,
+               grid.counts().y, grid.counts().z, placement.how.c_str(), renderer.sh_order());
 
-  FrameLoop loop(s, tracer, probe_tracer, volume, renderer,
-                 [&a](const scene::Scene& posed) { return std::vector<scene::View>{make_view(posed, a.view)}; });
+  // The views are rebuilt from the posed scene every frame: an animated camera node moves the
+  // whole rig.
+  FrameLoop loop(s, tracer, probe_tracer, volume, renderer, [&](const scene::Scene& posed) {
+    return make_frame_views(posed, choice, a.display, a.view).views;
+  });
   FrameLoopOptions options;
   options.frames = a.frames;
   options.time = a.time;
   options.fps = a.fps;
   options.every = a.every;
-  options.out = a.out;
-  const FrameLoopResult result = loop.run(options, [&](const FrameReport& r) {
-    const metrics::FrameTimings& t = *r.timings;
-    std::fprintf(stderr,
-                 "frame %d/%d t=%.3f s: probes %.1f ms (%u traced, %u uploaded in %.1f ms), "
-                 "raster %.1f ms (GPU shadow %.1f + forward %.1f + tonemap %.1f), total %.1f ms\n",
-                 r.frame + 1, a.frames, r.t, t.stage_ms("probe_update"), r.probes_traced,
-                 r.probes_uploaded, t.stage_ms("upload"),
-                 t.stage_ms("raster_record") + t.stage_ms("shadow_gpu") + t.stage_ms("forward_gpu") +
-                     t.stage_ms("tonemap_gpu") + t.stage_ms("raster_wait"),
-                 t.stage_ms("shadow_gpu"), t.stage_ms("forward_gpu"), t.stage_ms("tonemap_gpu"),
-                 t.total_ms());
-  });
-  if (!a.timings.empty()) result.timings.write(a.timings);
-  for (const fs::path& p : result.written) std::printf("wrote %s\n", p.string().c_str());
+  const FrameSink sink = [&](int k, const raster::FrameOutput& frame) {
+    const std::string tag = a.every ? fmt::format("{:04d}", k) : "";
+    return writer.write(frame_images(frame), fmt::format("frame_{:04d}", k), tag);
+  };
+  run.result = loop.run(options, sink, [&](const FrameReport& r) { print_progress(r, a.frames); });
+  return run;
+}
+
+int run_render(const RenderArgs& a) {
+  check(a);  // before loading: a bad option should not cost a scene load
+  const DisplayChoice choice = resolve_display(a.display, a.view);
+  std::optional<display::Calibration> calibration;
+  if (!a.calibration.empty()) calibration = display::load_calibration(a.calibration);
+  scene::Scene s = scene::load_scene(a.scene);
+  s.pose(a.time);
+  const Placement placement = place_probes(a.probe, s);
+  const display::ViewSet first = make_frame_views(s, choice, a.display, a.view);
+  const FrameWriter writer(first, {.dir = a.out,
+                                   .stem = fs::path(a.scene).stem().string(),
+                                   .per_view = a.per_view,
+                                   .calibration = calibration});
+  std::error_code ec;
+  fs::create_directories(a.out, ec);
+  if (ec || !fs::is_directory(a.out)) throw std::runtime_error("cannot create output directory " + a.out);
+
+  const GpuRun run = render_frames(a, s, placement, choice, first, writer);
+  if (!a.timings.empty()) write_render_timings(a.timings, run.result.timings, run.result.counts, first);
+  for (const fs::path& p : run.result.written) std::printf("wrote %s\n", p.string().c_str());
   if (!a.timings.empty()) std::printf("wrote %s\n", a.timings.c_str());
+  if (run.validation) {
+    const std::uint32_t errors = run.log->errors();
+    std::fprintf(stderr, "render: validation: %u errors, %u warnings\n", errors,
+                 run.log->warnings());
+    if (errors > 0) {
+      const std::vector<std::string> messages = run.log->error_messages();
+      std::fprintf(stderr, "ddish: error: Vulkan validation reported %u error%s (first: %s)\n",
+                   errors, errors == 1 ? "" : "s",
+                   messages.empty() ? "not kept" : messages.front().c_str());
+      return 1;
+    }
+  }
   return 0;
 }
 
@@ -128,6 +193,11 @@ Action make_render(CLI::App& root) {
       "render", "the main job: probes updated and views rasterized per frame, written to --out");
   cmd->add_option("scene", a->scene, "glTF 2.0 scene (.gltf or .glb)")->required()->check(CLI::ExistingFile);
   add_camera_options(*cmd, a->view);
+  add_display_options(*cmd, a->display);
+  cmd->add_flag("--per-view", a->per_view, "also write every view as DIR/view_NN.png and .exr");
+  cmd->add_option("--calibration", a->calibration,
+                  "Looking Glass calibration (visual.json): also write the lenticular panel image")
+      ->check(CLI::ExistingFile);
   add_probe_options(*cmd, a->probe);
   cmd->add_option("--frames", a->frames, "frames to render")->capture_default_str();
   cmd->add_flag("--every", a->every, "write every frame, not only the last");

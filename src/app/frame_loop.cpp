@@ -2,10 +2,6 @@
 
 #include <algorithm>
 
-#include <fmt/format.h>
-
-#include "metrics/color.h"
-#include "metrics/image_io.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
 #include "raster/renderer.h"
@@ -13,29 +9,6 @@
 #include "trace/tracer.h"
 
 namespace ddish::app {
-
-namespace {
-
-metrics::Image linear_image(const raster::ViewImage& v) {
-  metrics::Image img(v.width, v.height);
-  img.pixels() = v.linear;
-  return img;
-}
-
-// The display pixels as an Image of linear values whose sRGB encoding is exactly those bytes,
-// so that metrics::write_png (clamp, sRGB-encode, round) writes them back unchanged.
-metrics::Image display_image(const raster::ViewImage& v) {
-  metrics::Image img(v.width, v.height);
-  for (std::size_t i = 0; i < v.display.size(); ++i) {
-    const std::uint32_t p = v.display[i];
-    img.pixels()[i] = {metrics::srgb_decode(float(p & 0xffu) / 255.0f),
-                       metrics::srgb_decode(float((p >> 8) & 0xffu) / 255.0f),
-                       metrics::srgb_decode(float((p >> 16) & 0xffu) / 255.0f)};
-  }
-  return img;
-}
-
-}  // namespace
 
 FrameLoop::FrameLoop(scene::Scene& scene, trace::Tracer& tracer,
                      const probes::ProbeTracer& probe_tracer, probes::ProbeVolume& volume,
@@ -50,11 +23,6 @@ FrameLoop::FrameLoop(scene::Scene& scene, trace::Tracer& tracer,
   for (std::uint32_t i = 0; i < volume.probe_count(); ++i) last_flags_[i] = volume.state(i).flags;
 }
 
-std::filesystem::path FrameLoop::frame_path(const std::filesystem::path& dir, int frame,
-                                            const std::string& extension) {
-  return dir / fmt::format("frame_{:04d}.{}", frame, extension);
-}
-
 std::vector<std::uint32_t> FrameLoop::changed_probes() {
   // Updated this frame (age back to 0), or whose flags changed (a probe found inside
   // geometry drops out of the interpolation and must be re-sent with weight 0).
@@ -67,7 +35,7 @@ std::vector<std::uint32_t> FrameLoop::changed_probes() {
   return dirty;
 }
 
-FrameLoopResult FrameLoop::run(const FrameLoopOptions& o,
+FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
                                const std::function<void(const FrameReport&)>& progress) {
   FrameLoopResult result;
   const bool animated = !scene_.animations.empty();
@@ -87,16 +55,21 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o,
       metrics::StageTimer timer(timings, "tracer_update");
       tracer_.update(scene_, moved);
     }
+    const std::uint64_t updates_before = volume_.frame();
+    const std::uint64_t rays_before = tracer_.rays_traced();
     if (o.update_probes) {
       metrics::StageTimer timer(timings, "probe_update");
-      report.probes_traced = probe_tracer_.update(volume_).probes_traced;
+      report.counts.probes_traced = probe_tracer_.update(volume_).probes_traced;
     }
+    report.counts.probe_updates = volume_.frame() - updates_before;
+    report.counts.probe_rays = tracer_.rays_traced() - rays_before;
     {
       metrics::StageTimer timer(timings, "upload");
       const std::vector<std::uint32_t> dirty = changed_probes();
-      report.probes_uploaded = renderer_.upload_probes(volume_, dirty).probes;
+      report.counts.probes_uploaded = renderer_.upload_probes(volume_, dirty).probes;
     }
     const std::vector<scene::View> views = views_(scene_);
+    report.counts.views = static_cast<std::uint32_t>(views.size());
     const raster::FrameOutput frame = renderer_.render(scene_, views);
     // The GPU passes run while the CPU waits for the submission, so the wait is split into the
     // passes' timestamp durations and the rest (submission, resolve and copies, idle): the
@@ -109,26 +82,13 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o,
     timings.add("tonemap_gpu", st.tonemap_gpu_ms);
     timings.add("raster_wait", std::max(0.0, st.execute_ms - gpu_ms));
     timings.add("readback", st.readback_ms);
-    {
+    const bool last = k + 1 == o.frames;
+    if (sink && (o.every || last)) {
       metrics::StageTimer timer(timings, "output");
-      const bool last = k + 1 == o.frames;
-      if (last) {
-        result.last_linear = linear_image(frame.views.front());
-        result.last_display = display_image(frame.views.front());
-      }
-      if (!o.out.empty() && (o.every || last)) {
-        // One view today: frame_NNNN; several views will add a view suffix.
-        const metrics::Image linear = last ? result.last_linear : linear_image(frame.views.front());
-        const metrics::Image display = last ? result.last_display : display_image(frame.views.front());
-        const auto png = frame_path(o.out, k, "png");
-        const auto exr = frame_path(o.out, k, "exr");
-        metrics::write_png(png, display);
-        metrics::write_exr(exr, linear);
-        result.written.push_back(png);
-        result.written.push_back(exr);
-      }
+      for (auto& path : sink(k, frame)) result.written.push_back(std::move(path));
     }
     result.timings.add(timings);
+    result.counts.push_back(report.counts);
     report.timings = &result.timings.frames().back();
     if (progress) progress(report);
   }

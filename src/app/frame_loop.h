@@ -6,7 +6,8 @@
 //   and command recording), shadow_gpu / forward_gpu / tonemap_gpu (GPU timestamps), raster_wait
 //   (the rest of the wait for the GPU: submission, resolve, copies), readback, output.
 // They do not overlap, so a frame's total_ms is its wall time; rasterization is
-// raster_record + the three *_gpu + raster_wait.
+// raster_record + the three *_gpu + raster_wait. All N views of a frame go to the renderer in
+// one call, after the one probe update they share.
 #pragma once
 
 #include <cstdint>
@@ -15,7 +16,6 @@
 #include <string>
 #include <vector>
 
-#include "metrics/image.h"
 #include "metrics/timing.h"
 #include "scene/view.h"
 
@@ -26,7 +26,8 @@ class ProbeVolume;
 
 namespace ddish::raster {
 class Renderer;
-}
+struct FrameOutput;
+}  // namespace ddish::raster
 
 namespace ddish::scene {
 struct Scene;
@@ -43,27 +44,39 @@ struct FrameLoopOptions {
   double time = 0.0;  // t of frame 0, seconds
   double fps = 30.0;
   bool every = false;             // write every frame, not only the last
-  std::filesystem::path out;      // empty: write nothing
   bool update_probes = true;      // false: render with the probes as they are
+};
+
+// What a frame did, counted (not timed): the figures that must not grow with the views.
+struct FrameCounts {
+  std::uint32_t views = 0;
+  // Probe tracer runs this frame, read from the volume's update counter (ProbeVolume::frame()),
+  // not from the loop's own control flow: one per frame whatever the number of views.
+  std::uint64_t probe_updates = 0;
+  std::uint64_t probe_rays = 0;  // rays the path tracer cast this frame (probe paths)
+  std::uint32_t probes_traced = 0;
+  std::uint32_t probes_uploaded = 0;
 };
 
 struct FrameReport {
   int frame = 0;
   double t = 0.0;
-  std::uint32_t probes_traced = 0;
-  std::uint32_t probes_uploaded = 0;
+  FrameCounts counts;
   const metrics::FrameTimings* timings = nullptr;
 };
 
 struct FrameLoopResult {
   metrics::TimingLog timings;
+  std::vector<FrameCounts> counts;  // one per frame
   std::vector<std::filesystem::path> written;
-  metrics::Image last_linear;   // view 0 of the last frame
-  metrics::Image last_display;  // its display values, decoded back to linear
 };
 
 // The views of a frame from the scene as posed (a camera node may be animated).
 using ViewSource = std::function<std::vector<scene::View>(const scene::Scene&)>;
+
+// Writes frame `frame`'s images and returns the files written.
+using FrameSink =
+    std::function<std::vector<std::filesystem::path>(int frame, const raster::FrameOutput&)>;
 
 class FrameLoop {
  public:
@@ -71,13 +84,10 @@ class FrameLoop {
   FrameLoop(scene::Scene& scene, trace::Tracer& tracer, const probes::ProbeTracer& probe_tracer,
             probes::ProbeVolume& volume, raster::Renderer& renderer, ViewSource views);
 
-  // Runs the frames; `progress` (optional) is called after each.
-  FrameLoopResult run(const FrameLoopOptions& options,
+  // Runs the frames; `sink` (optional) gets the last frame, or every frame with options.every;
+  // `progress` (optional) is called after each frame.
+  FrameLoopResult run(const FrameLoopOptions& options, const FrameSink& sink = {},
                       const std::function<void(const FrameReport&)>& progress = {});
-
-  // DIR/frame_NNNN.png and .exr for frame k.
-  static std::filesystem::path frame_path(const std::filesystem::path& dir, int frame,
-                                          const std::string& extension);
 
  private:
   std::vector<std::uint32_t> changed_probes();

@@ -1,0 +1,35 @@
+// The --timings JSON of `ddish render`: metrics::TimingLog's per-frame stage milliseconds and
+// summary, plus what the stages cannot say on their own:
+//   "display": {"name", "kind", "views", "columns", "rows", "tile_width", "tile_height"}
+//   "per_view_method": how per-view times are derived
+//   and in every frame: "views", "probe_updates" (probe tracer runs, counted from the volume's
+//   update counter), "probe_rays", "probes_traced", "probes_uploaded", and "per_view_ms":
+//   {"forward_gpu": forward_gpu / views, "raster": (raster_record + shadow_gpu + forward_gpu +
+//   tonemap_gpu + raster_wait + readback) / views}.
+// The renderer times the forward pass of all views with one pair of timestamps (blocks of views
+// share passes under multiview), so per-view figures are the frame's time divided by the views.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/frame_loop.h"
+#include "display/view_set.h"
+#include "metrics/timing.h"
+
+namespace ddish::app {
+
+// Raster milliseconds of a frame: every stage the rasterizer's frame costs.
+double raster_ms(const metrics::FrameTimings& frame);
+
+nlohmann::ordered_json render_timings_json(const metrics::TimingLog& log,
+                                           const std::vector<FrameCounts>& counts,
+                                           const display::ViewSet& set);
+
+// Writes render_timings_json; throws std::runtime_error when the file cannot be written.
+void write_render_timings(const std::filesystem::path& path, const metrics::TimingLog& log,
+                          const std::vector<FrameCounts>& counts, const display::ViewSet& set);
+
+}  // namespace ddish::app

@@ -1,0 +1,145 @@
+// `ddish render --display`: the quilt's name and size follow the profile (and --views /
+// --width / --height), a 48-view quilt renders with zero validation errors, the probe tracer runs
+// exactly once per frame whatever the number of views (counted from the timings JSON), stereo
+// writes a side-by-side pair, a calibration adds the lenticular panel image, and bad display
+// options are one line with exit code 2.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "display_cli.h"
+
+namespace {
+
+using namespace display_cli;
+
+// Small tiles and few probe paths: the tests are about files and counts, not image quality.
+const std::string kFast = " --probe-samples 16 --msaa 1";
+
+class RenderDisplayCli : public Cli {
+ protected:
+  // A Looking Glass calibration for a 60 × 80 panel (made-up numbers of the usual magnitudes).
+  std::string calibration() const {
+    const fs::path file = dir_ / "visual.json";
+    std::ofstream(file) << R"({"pitch": {"value": 52.0}, "slope": {"value": -7.2},
+      "center": {"value": 0.3}, "DPI": {"value": 324.0}, "screenW": {"value": 60.0},
+      "screenH": {"value": 80.0}, "invView": {"value": 1.0}, "flipImageX": {"value": 0.0},
+      "flipImageY": {"value": 0.0}, "flipSubp": {"value": 0.0}})";
+    return quote(file.string());
+  }
+};
+
+TEST_F(RenderDisplayCli, QuiltNameAndSizeFollowTheProfileWithTileOverride) {
+  Result r = run("render " + cornell() + " --display looking-glass-portrait --width 42 --height 56"
+                 " --out " + path("out") + kFast);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const fs::path png = dir_ / "out" / "cornell_box_qs8x6a0.75.png";
+  EXPECT_EQ(png_size(png), std::make_pair(336, 336));  // 8 × 42 by 6 × 56
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "cornell_box_qs8x6a0.75.exr"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "view_00.png"));  // only with --per-view
+}
+
+TEST_F(RenderDisplayCli, FullSizePortraitQuiltIs3360Square) {
+  Result r = run("render " + cornell() + " --display looking-glass-portrait --out " + path("out") +
+                 kFast);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(png_size(dir_ / "out" / "cornell_box_qs8x6a0.75.png"), std::make_pair(3360, 3360));
+}
+
+TEST_F(RenderDisplayCli, FortyEightViewsWithoutValidationErrors) {
+  if (run("devices --validation").code != 0) GTEST_SKIP() << "no Vulkan validation layer";
+  Result r = run("render " + cornell() + " --display looking-glass-portrait --width 42 --height 56"
+                 " --out " + path("out") + kFast,
+                 "DDISH_VALIDATION=1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("render: validation: 0 errors"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("48 views"), std::string::npos) << r.err;
+}
+
+TEST_F(RenderDisplayCli, ProbeTracerRunsOncePerFrameWhateverTheViews) {
+  std::vector<std::uint64_t> rays;
+  std::vector<std::uint32_t> traced;
+  for (int views : {1, 2, 48}) {
+    std::string timings = "t";
+    timings += std::to_string(views);
+    timings += ".json";
+    Result r = run("render " + cornell() + " --display looking-glass-portrait --views " +
+                   std::to_string(views) + " --width 12 --height 16 --frames 3 --out " +
+                   path("out") + " --timings " + path(timings) + kFast);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json doc = nlohmann::json::parse(slurp(dir_ / timings));
+    EXPECT_EQ(doc["display"]["views"], views);
+    ASSERT_EQ(doc["frames"].size(), 3u);
+    std::uint64_t total = 0;
+    for (const auto& f : doc["frames"]) {
+      EXPECT_EQ(f["probe_updates"], 1) << "views " << views;
+      EXPECT_EQ(f["views"], views);
+      traced.push_back(f["probes_traced"].get<std::uint32_t>());
+      const double forward = f["stages_ms"]["forward_gpu"].get<double>();
+      EXPECT_NEAR(f["per_view_ms"]["forward_gpu"].get<double>() * views, forward, 1e-9 + 1e-9 * forward);
+      total += f["probe_rays"].get<std::uint64_t>();
+    }
+    rays.push_back(total);
+  }
+  // Same seed, same probe work: the views do not add a single probe or probe ray. The first
+  // update traces the sidecar's whole 8 × 8 × 8 grid (it classifies every probe).
+  ASSERT_EQ(traced.size(), 9u);
+  EXPECT_EQ(traced[0], 512u);
+  for (std::size_t i = 3; i < traced.size(); ++i) EXPECT_EQ(traced[i], traced[i % 3]) << i;
+  EXPECT_GT(rays[0], 0u);
+  EXPECT_EQ(rays[1], rays[0]);
+  EXPECT_EQ(rays[2], rays[0]);
+}
+
+TEST_F(RenderDisplayCli, ViewsRecomputeTheQuiltLayout) {
+  Result r = run("render " + cornell() + " --display looking-glass-portrait --views 8 --width 10"
+                 " --height 12 --per-view --out " + path("out") + kFast);
+  ASSERT_EQ(r.code, 0) << r.err;
+  // 8 tiles of 10 × 12: 4 × 2 (no empty cell, nearest to square of those).
+  EXPECT_EQ(png_size(dir_ / "out" / "cornell_box_qs4x2a0.75.png"), std::make_pair(40, 24));
+  EXPECT_EQ(png_size(dir_ / "out" / "view_7.png"), std::make_pair(10, 12));
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "view_0.exr"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "view_8.png"));
+}
+
+TEST_F(RenderDisplayCli, StereoWritesSideBySide) {
+  Result r = run("render " + cornell() + " --display stereo --width 40 --height 30 --out " +
+                 path("out") + kFast);
+  ASSERT_EQ(r.code, 0) << r.err;
+  // The aspect of stereo-hmd's eye angles: (tan 50° + tan 43°) / (tan 47° + tan 53°) = 0.885.
+  EXPECT_EQ(png_size(dir_ / "out" / "cornell_box_sbs_qs2x1a0.88.png"), std::make_pair(80, 30));
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "cornell_box_sbs_qs2x1a0.88.exr"));
+}
+
+TEST_F(RenderDisplayCli, CalibrationWritesTheLenticularPanel) {
+  Result r = run("render " + cornell() + " --display looking-glass-portrait --width 15 --height 20"
+                 " --calibration " + calibration() + " --out " + path("out") + kFast);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(png_size(dir_ / "out" / "cornell_box_lenticular.png"), std::make_pair(60, 80));
+}
+
+TEST_F(RenderDisplayCli, BadDisplayOptionsAreOneLineExitTwo) {
+  const std::string out = " --out " + path("out");
+  Result bad = run("render " + cornell() + " --display no-such-display" + out);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  for (const char* name : {"looking-glass-portrait", "looking-glass-16", "stereo-hmd", "single"})
+    EXPECT_NE(bad.err.find(name), std::string::npos) << bad.err;
+
+  for (const std::string& args : std::vector<std::string>{
+           " --display looking-glass-portrait --views 0", " --views 0", " --views 4",
+        " --display stereo --views 3", " --display lightfield-32x720p --views 8",
+        " --display looking-glass-portrait --views 5000",
+        " --display looking-glass-portrait --focal-distance -1",
+        " --display stereo --calibration " + calibration(),
+        " --display looking-glass-portrait --calibration " +
+            quote(std::string(DDISH_SOURCE_DIR) + "/README.md")}) {
+    Result r = run("render " + cornell() + args + out);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("ddish: error: ", 0), 0u) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "frame_0000.png"));
+}
+
+}  // namespace
