@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/plan_report.h"
 #include "scene/features.h"
 #include "scene/gltf_loader.h"
 
@@ -143,8 +144,7 @@ void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scen
       f.glossy_materials, f.metal_materials, f.textured_materials, f.normal_mapped_materials,
       f.masked_materials, f.blended_materials, f.double_sided_materials, f.emissive_materials);
   fmt::print("left out\n");
-  if (plan.left_out.empty()) fmt::print("  nothing: the scene uses every pass\n");
-  for (const auto& item : plan.left_out) fmt::print("  {}: {}\n", item.what, item.why);
+  for (const std::string& line : left_out_lines(plan, "  ")) fmt::print("{}\n", line);
   for (const auto& w : s.warnings) fmt::print("warning: {}\n", w);
 }
 

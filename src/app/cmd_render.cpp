@@ -5,13 +5,18 @@
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
 //                    [--probe-samples N] [--hysteresis A] [--bounces N] [--msaa 1|4]
 //                    [--sample-shading] [--tonemap linear|filmic] [--no-indirect]
-//                    [--device N] [--seed N]
+//                    [--schedule uniform|visibility] [--budget-ms MS] [--max-age N]
+//                    [--blend per-update|per-sample] [--device N] [--seed N]
 //
 // The main job: each frame poses the scene at t = time + k / fps, updates the probes in-process
 // ONCE, uploads those that changed, rasterizes all N views of the display (view_options.h) in one
 // Renderer::render call, and writes the last frame (every frame with --every) as frame_outputs.h
 // says: DIR/frame_NNNN.png/.exr for the single view, a quilt for light-field and grid displays,
 // a side-by-side pair for stereo (PNG: display values, tone curve of --tonemap; EXR: linear).
+// The probes of each frame are the scheduler's choice (schedule_options.h, frame_loop.h) within
+// --budget-ms or the profile's budget. At start the run log (stderr) lists what the scene's
+// render plan leaves out and why, as `ddish info` does, and after the first frame how many
+// probes were found inside geometry (never traced or uploaded again).
 // Progress goes to stderr, one line per frame; --timings writes render_timings.h's JSON.
 // With validation on (DDISH_VALIDATION=1) any validation error makes the run exit 1.
 #include <algorithm>
@@ -30,16 +35,20 @@
 #include "app/commands.h"
 #include "app/frame_loop.h"
 #include "app/frame_outputs.h"
+#include "app/plan_report.h"
 #include "app/probe_options.h"
 #include "app/render_timings.h"
+#include "app/schedule_options.h"
 #include "app/view_options.h"
 #include "display/calibration.h"
 #include "gpu/context.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
+#include "probes/scheduler.h"
 #include "probes/tracer_source.h"
 #include "raster/renderer.h"
 #include "raster/tonemap.h"
+#include "scene/features.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
 #include "trace/tracer.h"
@@ -56,6 +65,7 @@ struct RenderArgs {
   bool per_view = false;
   std::string calibration;
   ProbeArgs probe;
+  ScheduleArgs schedule;
   int frames = 1;
   bool every = false;
   double fps = 30.0;
@@ -71,6 +81,7 @@ struct RenderArgs {
 
 void check(const RenderArgs& a) {
   check_probe_options(a.probe);
+  check_schedule_options(a.schedule);
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
   if (a.frames < 1) throw std::invalid_argument("--frames must be at least 1");
@@ -83,16 +94,31 @@ void check(const RenderArgs& a) {
 void print_progress(const FrameReport& r, int frames) {
   const metrics::FrameTimings& t = *r.timings;
   const FrameCounts& c = r.counts;
+  const probes::SchedulerFrameRecord& sr = c.schedule;
+  const std::string budget =
+      sr.budget_ms > 0.0 ? fmt::format(" of budget {:g} ms{}", sr.budget_ms,
+                                       sr.within_budget() ? "" : " (over)")
+                         : std::string();
   std::fprintf(stderr,
-               "frame %d/%d t=%.3f s: %u views; probes %.1f ms (%llu update, %u traced, %u "
-               "uploaded in %.1f ms), raster %.1f ms = %.2f ms/view (GPU shadow %.1f + forward "
-               "%.1f + tonemap %.1f), output %.1f ms, total %.1f ms\n",
+               "frame %d/%d t=%.3f s: %u views; probes %.1f ms (%llu update, %u of %u active "
+               "traced at %u samples, %u changed, %u uploaded in %.1f ms), raster %.1f ms = %.2f ms/view "
+               "(GPU shadow %.1f + forward %.1f + tonemap %.1f), output %.1f ms, total %.1f "
+               "ms%s\n",
                r.frame + 1, frames, r.t, c.views, t.stage_ms("probe_update"),
                static_cast<unsigned long long>(c.probe_updates), c.probes_traced,
-               c.probes_uploaded, t.stage_ms("upload"), raster_ms(t),
-               raster_ms(t) / std::max(1u, c.views), t.stage_ms("shadow_gpu"),
+               c.probe_updates > 0 ? sr.active : c.probes_active, sr.samples_per_probe,
+               c.probes_changed, c.probes_uploaded, t.stage_ms("upload"),
+               raster_ms(t), raster_ms(t) / std::max(1u, c.views), t.stage_ms("shadow_gpu"),
                t.stage_ms("forward_gpu"), t.stage_ms("tonemap_gpu"), t.stage_ms("output"),
-               t.total_ms());
+               t.total_ms(), budget.c_str());
+  if (r.frame == 0)
+    std::fprintf(stderr, "render: %u of %u probes inside geometry: never traced or uploaded%s\n",
+                 c.probes_inactive, c.probes_active + c.probes_inactive,
+                 c.probes_unclassified > 0
+                     ? fmt::format(" ({} not classified yet: their first update will tell)",
+                                   c.probes_unclassified)
+                           .c_str()
+                     : "");
 }
 
 struct GpuRun {
@@ -111,7 +137,10 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   trace::Tracer tracer(s, path_options);
   probes::ProbeVolume volume(placement.grid, a.probe.sh_order);
   probes::TracerSource source(tracer);
-  const probes::ProbeTracer probe_tracer(source, update_options(a.probe));
+  probes::ProbeTracer probe_tracer(source, update_options(a.probe));
+  const double budget_ms = frame_budget_ms(
+      a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>());
+  probes::Scheduler scheduler(scheduler_options(a.schedule, a.probe, budget_ms));
 
   GpuRun run;
   gpu::Context gpu({.device_index = a.device});
@@ -133,11 +162,25 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                first.layout.width, first.layout.height, renderer.samples(), grid.counts().x,
                grid.counts().y, grid.counts().z, placement.how.c_str(), renderer.sh_order());
 
+  const probes::SchedulerOptions& so = scheduler.options();
+  std::fprintf(stderr, "render: schedule %s, blend %s, max age %u frames, budget %s\n",
+               probes::schedule_mode_name(so.mode), probes::blend_rule_name(so.blend),
+               so.priority.max_age,
+               budget_ms > 0.0 ? fmt::format("{:g} ms per frame", budget_ms).c_str() : "none");
+  std::fprintf(stderr, "render: left out\n");
+  for (const std::string& line : left_out_lines(scene::make_plan(scene::analyze(s)), "  "))
+    std::fprintf(stderr, "%s\n", line.c_str());
+
   // The views are rebuilt from the posed scene every frame: an animated camera node moves the
   // whole rig.
-  FrameLoop loop(s, tracer, probe_tracer, volume, renderer, [&](const scene::Scene& posed) {
-    return make_frame_views(posed, choice, a.display, a.view).views;
-  });
+  FrameLoop loop(
+      s, tracer, probe_tracer, scheduler,
+      [&](const probes::FramePlan& plan) {
+        return frame_update_options(a.schedule, a.probe, plan.samples, plan.hysteresis);
+      },
+      volume, renderer, [&](const scene::Scene& posed) {
+        return make_frame_views(posed, choice, a.display, a.view).views;
+      });
   FrameLoopOptions options;
   options.frames = a.frames;
   options.time = a.time;
@@ -199,6 +242,7 @@ Action make_render(CLI::App& root) {
                   "Looking Glass calibration (visual.json): also write the lenticular panel image")
       ->check(CLI::ExistingFile);
   add_probe_options(*cmd, a->probe);
+  add_schedule_options(*cmd, a->schedule);
   cmd->add_option("--frames", a->frames, "frames to render")->capture_default_str();
   cmd->add_flag("--every", a->every, "write every frame, not only the last");
   cmd->add_option("--fps", a->fps, "frame k shows the scene at time + k / fps")->capture_default_str();

@@ -36,7 +36,18 @@ nlohmann::ordered_json render_timings_json(const metrics::TimingLog& log,
     f["probe_updates"] = c.probe_updates;
     f["probe_rays"] = c.probe_rays;
     f["probes_traced"] = c.probes_traced;
+    f["probes_changed"] = c.probes_changed;
     f["probes_uploaded"] = c.probes_uploaded;
+    f["probes_active"] = c.probes_active;
+    f["probes_inactive"] = c.probes_inactive;
+    f["probes_never_updated"] = c.probes_never_updated;
+    f["oldest_probe_age"] = c.oldest_probe_age;
+    f["probes_unclassified"] = c.probes_unclassified;
+    f["raster_passes"] = {{"shadow", c.shadow_passes},
+                          {"shadows_reused", c.shadows_reused},
+                          {"forward", c.forward_passes},
+                          {"tonemap", c.tonemap_passes}};
+    f["scheduler"] = c.schedule.to_json();
     f["per_view_ms"] = {{"forward_gpu", t.stage_ms("forward_gpu") / views},
                         {"raster", raster_ms(t) / views}};
   }

@@ -3,7 +3,13 @@
 //   "display": {"name", "kind", "views", "columns", "rows", "tile_width", "tile_height"}
 //   "per_view_method": how per-view times are derived
 //   and in every frame: "views", "probe_updates" (probe tracer runs, counted from the volume's
-//   update counter), "probe_rays", "probes_traced", "probes_uploaded", and "per_view_ms":
+//   update counter), "probe_rays", "probes_traced", "probes_changed" (traced or newly
+//   inactive: what the loop hands the renderer), "probes_uploaded" (what the renderer copied,
+//   the whole volume when many changed), "probes_active",
+//   "probes_inactive", "probes_never_updated", "oldest_probe_age", "probes_unclassified"
+//   (after the update), "raster_passes": {"shadow", "shadows_reused", "forward", "tonemap"}
+//   (raster::FrameStats), "scheduler" (probes::SchedulerFrameRecord's JSON: budget, stages,
+//   probes traced / skipped, samples per probe, rays, over_allowance), and "per_view_ms":
 //   {"forward_gpu": forward_gpu / views, "raster": (raster_record + shadow_gpu + forward_gpu +
 //   tonemap_gpu + raster_wait + readback) / views}.
 // The renderer times the forward pass of all views with one pair of timestamps (blocks of views
