@@ -46,6 +46,7 @@ layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_tangent;
+layout(location = 4) flat in uint in_view;  // which views[] entry (forward_vertex.glsl)
 
 layout(location = 0) out vec4 out_color;
 
@@ -162,7 +163,7 @@ void main() {
       n = normalize(t * c.x * material.params.z + b * c.y * material.params.z + n * c.z);
     }
   }
-  const vec3 v = normalize(views[pc.view_index].eye.xyz - in_world);
+  const vec3 v = normalize(views[in_view].eye.xyz - in_world);
   const float nov = dot(n, v);
   const float cos_v = clamp(nov, 0.0, 1.0);
   const vec3 f0 = mix(vec3(0.04), albedo, metallic);

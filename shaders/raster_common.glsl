@@ -12,7 +12,7 @@
 layout(push_constant) uniform DrawConstants {
   mat4 model;
   vec4 normal_matrix[3];
-  uint view_index;   // forward: index into views[]; shadow: index into shadow_layers[]
+  uint view_index;   // forward: the pass's first view in views[]; shadow: shadow_layers[] index
   uint material;     // unused by the shaders, kept for debugging captures
 } pc;
 

@@ -1,12 +1,10 @@
 #include "raster/forward_pass.h"
 
 #include <algorithm>
-#include <numeric>
 #include <string>
 
 #include "gpu/device.h"
 #include "gpu/error.h"
-#include "gpu/shader.h"
 #include "raster/gpu_meshes.h"
 #include "raster/gpu_types.h"
 #include "raster/material_textures.h"
@@ -15,33 +13,23 @@
 
 namespace ddish::raster {
 
-ForwardPass::ForwardPass(const gpu::Device& device, const ForwardPassDesc& desc) : desc_(desc) {
+namespace {
+
+void check_desc(const gpu::Device& device, const ForwardPassDesc& desc) {
   if (desc.sh_order < 1 || desc.sh_order > 4)
     throw gpu::GpuError("the forward pass has SH orders 1..4, not " + std::to_string(desc.sh_order));
   if (desc.sample_shading && !device.features().sample_rate_shading)
     throw gpu::GpuError(device.info().name +
                         " lacks the sampleRateShading feature that sample shading needs");
-  layout_ = make_pipeline_layout(device, desc.set_layouts, sizeof(DrawConstants));
-  const gpu::ShaderModule vertex = gpu::ShaderModule::load(device, "forward.vert");
-  const gpu::ShaderModule fragment =
-      gpu::ShaderModule::load(device, "forward_sh" + std::to_string(desc.sh_order) + ".frag");
-  GraphicsPipelineDesc p;
-  p.layout = layout_.get();
-  p.vertex = vertex.handle();
-  p.fragment = fragment.handle();
-  p.fragment_constants = desc.variant.constants();
-  p.color_format = RenderTarget::kColorFormat;
-  p.depth_format = RenderTarget::kDepthFormat;
-  p.samples = static_cast<VkSampleCountFlagBits>(desc.samples);
-  p.sample_shading = desc.sample_shading;
-  pipeline_ = make_graphics_pipeline(device, p);
 }
 
-void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const GpuMeshes& meshes,
-                         const MaterialTextures& materials, std::array<VkDescriptorSet, 3> sets,
-                         const RenderTarget& target, std::uint32_t views, const glm::vec3& environment) {
-  passes_ = 0;
-  // Instances by material, so that each material's set is bound once per view.
+const gpu::Device& checked(const gpu::Device& device, const ForwardPassDesc& desc) {
+  check_desc(device, desc);
+  return device;
+}
+
+// Instances with a mesh, by material, so that each material's set is bound once per pass.
+std::vector<std::size_t> material_order(const scene::Scene& scene, const GpuMeshes& meshes) {
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const int mesh = scene.instances[i].mesh;
@@ -52,57 +40,180 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
   };
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return material_of(a) < material_of(b); });
+  return order;
+}
 
+}  // namespace
+
+ForwardPass::ForwardPass(const gpu::Device& device, const ForwardPassDesc& desc)
+    : device_(checked(device, desc)),
+      desc_(desc),
+      vertex_(gpu::ShaderModule::load(device, "forward.vert")),
+      fragment_(gpu::ShaderModule::load(device, "forward_sh" + std::to_string(desc.sh_order) + ".frag")) {
+  layout_ = make_pipeline_layout(device, desc.set_layouts, sizeof(DrawConstants));
+  if (device.features().multiview)
+    max_multiview_ = std::max(1u, device.info().max_multiview_view_count);
+  layered_supported_ = device.features().shader_output_layer;
+  pipeline_for(ViewMethod::per_view, 1);
+}
+
+void ForwardPass::prepare(ViewMethod method) {
+  pipeline_for(method, method == ViewMethod::multiview ? max_multiview_ : 1u);
+}
+
+VkPipeline ForwardPass::pipeline_for(ViewMethod method, std::uint32_t view_count) {
+  if (method == ViewMethod::per_view && pipeline_) return pipeline_.get();
+  if (method == ViewMethod::layered && layered_pipeline_) return layered_pipeline_.get();
+  const std::uint32_t mask = method == ViewMethod::multiview ? (1u << view_count) - 1u : 0u;
+  if (method == ViewMethod::multiview) {
+    auto it = multiview_pipelines_.find(mask);
+    if (it != multiview_pipelines_.end()) return it->second.get();
+  }
+  if (method == ViewMethod::layered && !layered_vertex_) {
+    if (!layered_supported_)
+      throw gpu::GpuError(device_.info().name +
+                          " lacks the shaderOutputLayer feature that layered view recording needs");
+    layered_vertex_.emplace(gpu::ShaderModule::load(device_, "forward_layered.vert"));
+  }
+  GraphicsPipelineDesc p;
+  p.layout = layout_.get();
+  p.vertex = method == ViewMethod::layered ? layered_vertex_->handle() : vertex_.handle();
+  p.fragment = fragment_.handle();
+  p.fragment_constants = desc_.variant.constants();
+  p.color_format = RenderTarget::kColorFormat;
+  p.depth_format = RenderTarget::kDepthFormat;
+  p.samples = static_cast<VkSampleCountFlagBits>(desc_.samples);
+  p.sample_shading = desc_.sample_shading;
+  p.view_mask = mask;
+  Pipeline made = make_graphics_pipeline(device_, p);
+  const VkPipeline handle = made.get();
+  if (method == ViewMethod::multiview) multiview_pipelines_.emplace(mask, std::move(made));
+  else if (method == ViewMethod::layered) layered_pipeline_ = std::move(made);
+  else pipeline_ = std::move(made);
+  return handle;
+}
+
+void ForwardPass::begin_pass(VkCommandBuffer cmd, const RenderTarget& target, VkImageView color_view,
+                             VkImageView depth_view, std::uint32_t layers, std::uint32_t view_mask,
+                             const glm::vec3& environment, VkPipeline pipeline,
+                             std::span<const VkDescriptorSet> sets) const {
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = color_view;
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  // The clear colour is the environment: no full-screen draw (see the header).
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  color.clearValue.color = {{environment.r, environment.g, environment.b, 1.0f}};
+  // Multisampled targets are resolved after all views by RenderTarget::end_frame.
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  depth.imageView = depth_view;
+  depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  depth.clearValue.depthStencil = {1.0f, 0};
+  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
   const std::uint32_t w = target.desc().width, h = target.desc().height;
-  for (std::uint32_t view = 0; view < views; ++view) {
-    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    color.imageView = target.color_view(view);
-    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    color.clearValue.color = {{environment.r, environment.g, environment.b, 1.0f}};
-    // Multisampled targets are resolved after all views by RenderTarget::end_frame.
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = target.depth_view(view);
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    depth.clearValue.depthStencil = {1.0f, 0};
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    info.renderArea = {{0, 0}, {w, h}};
-    info.layerCount = 1;
-    info.colorAttachmentCount = 1;
-    info.pColorAttachments = &color;
-    info.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &info);
-    set_viewport(cmd, w, h);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0,
-                            static_cast<std::uint32_t>(sets.size()), sets.data(), 0, nullptr);
-    meshes.bind(cmd);
-    int bound_material = -2;  // no material index is -2
-    for (std::size_t i : order) {
-      const scene::Instance& inst = scene.instances[i];
-      const scene::Mesh& mesh = scene.meshes[static_cast<std::size_t>(inst.mesh)];
-      if (mesh.material != bound_material) {
-        bound_material = mesh.material;
-        const VkDescriptorSet set = materials.set(mesh.material);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), kMaterialSet,
-                                1, &set, 0, nullptr);
-        vkCmdSetCullMode(cmd, scene.material_of(mesh).double_sided ? VK_CULL_MODE_NONE
-                                                                   : VK_CULL_MODE_BACK_BIT);
-      }
+  info.renderArea = {{0, 0}, {w, h}};
+  info.layerCount = layers;  // ignored by multiview passes, which have the view mask instead
+  info.viewMask = view_mask;
+  info.colorAttachmentCount = 1;
+  info.pColorAttachments = &color;
+  info.pDepthAttachment = &depth;
+  vkCmdBeginRendering(cmd, &info);
+  set_viewport(cmd, w, h);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0,
+                          static_cast<std::uint32_t>(sets.size()), sets.data(), 0, nullptr);
+}
+
+void ForwardPass::draw_items(VkCommandBuffer cmd, const scene::Scene& scene,
+                             const MaterialTextures& materials, std::span<const DrawItem> items,
+                             std::uint32_t view_index, std::uint32_t first_instance) const {
+  int bound_material = -2;  // no material index is -2
+  std::uint32_t pushed_instance = ~0u;
+  for (const DrawItem& item : items) {
+    const scene::Instance& inst = scene.instances[item.instance];
+    const scene::Mesh& mesh = scene.meshes[static_cast<std::size_t>(inst.mesh)];
+    if (mesh.material != bound_material) {
+      bound_material = mesh.material;
+      const VkDescriptorSet set = materials.set(mesh.material);
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), kMaterialSet, 1,
+                              &set, 0, nullptr);
+      vkCmdSetCullMode(cmd, scene.material_of(mesh).double_sided ? VK_CULL_MODE_NONE
+                                                                 : VK_CULL_MODE_BACK_BIT);
+    }
+    // One instance's clusters follow one another: its constants are pushed once for all.
+    if (item.instance != pushed_instance) {
+      pushed_instance = item.instance;
       // glTF: a mirroring transform turns clockwise triangles into front faces.
       const bool mirrored = glm::determinant(glm::mat3(inst.transform)) < 0.0f;
       vkCmdSetFrontFace(cmd, mirrored ? VK_FRONT_FACE_CLOCKWISE : VK_FRONT_FACE_COUNTER_CLOCKWISE);
-      const DrawConstants pc = draw_constants(inst.transform, view,
-                                              static_cast<std::uint32_t>(mesh.material + 1));
+      const DrawConstants pc =
+          draw_constants(inst.transform, view_index, static_cast<std::uint32_t>(mesh.material + 1));
       vkCmdPushConstants(cmd, layout_.get(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
                          0, sizeof(pc), &pc);
-      meshes.draw(cmd, inst.mesh);
     }
-    vkCmdEndRendering(cmd);
-    ++passes_;
+    vkCmdDrawIndexed(cmd, item.index_count, 1, item.first_index, item.vertex_offset, first_instance);
+  }
+}
+
+void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const GpuMeshes& meshes,
+                         const MaterialTextures& materials, std::array<VkDescriptorSet, 3> sets,
+                         const RenderTarget& target, const ForwardViews& views,
+                         const glm::vec3& environment) {
+  passes_ = 0;
+  stats_ = {};
+  const auto n = static_cast<std::uint32_t>(views.view_proj.size());
+  const std::vector<std::size_t> order = material_order(scene, meshes);
+  auto pass_views = [&](std::uint32_t first, std::uint32_t count) {
+    return PassViews{views.view_proj.subspan(first, count), views.eyes.subspan(first, count)};
+  };
+
+  switch (views.method) {
+    case ViewMethod::per_view:
+      for (std::uint32_t v = 0; v < n; ++v) {
+        items_.clear();
+        build_draws(scene, meshes, order, pass_views(v, 1), views.cull, items_, stats_);
+        begin_pass(cmd, target, target.color_view(v), target.depth_view(v), 1, 0, environment,
+                   pipeline_for(ViewMethod::per_view, 1), sets);
+        meshes.bind(cmd);
+        draw_items(cmd, scene, materials, items_, v, 0);
+        vkCmdEndRendering(cmd);
+        ++passes_;
+      }
+      break;
+    case ViewMethod::multiview:
+      // A target without view blocks gets one-view multiview passes (still correct).
+      for (std::uint32_t b = 0, first = 0; first < n; ++b) {
+        const bool blocks = target.block_count() > 0;
+        const std::uint32_t count = blocks ? target.block_layers(b) : 1u;
+        items_.clear();
+        build_draws(scene, meshes, order, pass_views(first, count), views.cull, items_, stats_);
+        begin_pass(cmd, target, blocks ? target.color_block_view(b) : target.color_view(first),
+                   blocks ? target.depth_block_view(b) : target.depth_view(first), 1, (1u << count) - 1u,
+                   environment, pipeline_for(ViewMethod::multiview, count), sets);
+        meshes.bind(cmd);
+        draw_items(cmd, scene, materials, items_, first, 0);
+        vkCmdEndRendering(cmd);
+        ++passes_;
+        first += count;
+      }
+      break;
+    case ViewMethod::layered: {
+      const VkPipeline pipeline = pipeline_for(ViewMethod::layered, n);
+      begin_pass(cmd, target, target.color_all_view(), target.depth_all_view(), n, 0, environment,
+                 pipeline, sets);
+      meshes.bind(cmd);
+      // Each view's own draws, its index as the instance (the shader's layer and view).
+      for (std::uint32_t v = 0; v < n; ++v) {
+        items_.clear();
+        build_draws(scene, meshes, order, pass_views(v, 1), views.cull, items_, stats_);
+        draw_items(cmd, scene, materials, items_, 0, v);
+      }
+      vkCmdEndRendering(cmd);
+      ++passes_;
+      break;
+    }
   }
 }
 

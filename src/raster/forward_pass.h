@@ -1,20 +1,26 @@
-// The forward pass: every instance drawn once per view with direct light, SH-probe indirect
+// The forward pass: every instance drawn for every view with direct light, SH-probe indirect
 // light and emission (forward_main.glsl), into an HDR target cleared to the environment's
-// radiance (the uniform sky is what a pixel that hits nothing sees). It takes a list of views
-// and a layered target, one layer per view: today each view is its own dynamic-rendering pass;
-// a multiview path (one pass, gl_ViewIndex) can replace the loop without changing the interface.
+// radiance (the uniform sky is what a pixel that hits nothing sees; a clear, not a full-screen
+// draw, so lavapipe 22's multiview bug with primitives outside the clip volume cannot touch it).
+// The views go into a layered target, one layer per view, recorded as ViewMethod says, each
+// pass drawing only the clusters its views can see when culling is on (raster/draw_list.h).
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <map>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
+#include "gpu/shader.h"
+#include "raster/draw_list.h"
 #include "raster/graphics_pipeline.h"
 #include "raster/shader_variant.h"
+#include "raster/view_method.h"
 
 namespace ddish::gpu {
 class Device;
@@ -41,26 +47,63 @@ struct ForwardPassDesc {
   ShaderVariant variant;
 };
 
+// What one frame's forward pass draws: the views (their matrices also live in the frame set,
+// which the shaders read; these are for culling) and how to record them.
+struct ForwardViews {
+  std::span<const glm::mat4> view_proj;
+  std::span<const glm::vec3> eyes;
+  ViewMethod method = ViewMethod::per_view;
+  bool cull = true;
+};
+
 class ForwardPass {
  public:
   // Throws GpuError for a device without sample-rate shading when it is asked for, and for an
   // SH order outside 1..4.
   ForwardPass(const gpu::Device& device, const ForwardPassDesc& desc);
 
-  // Records one pass per view into layer i of target: draws every instance of the scene.
-  // sets holds the frame, probe and BRDF sets (SetIndex 0..2); materials give set 3.
+  // Records the views into the target's layers (view i -> layer i). sets holds the frame, probe
+  // and BRDF sets (SetIndex 0..2); materials give set 3. Multiview draws a pass per view block
+  // of the target (make it with block = views_per_pass()); layered needs the device's
+  // shaderOutputLayer (GpuError otherwise).
   void record(VkCommandBuffer cmd, const scene::Scene& scene, const GpuMeshes& meshes,
               const MaterialTextures& materials, std::array<VkDescriptorSet, 3> sets,
-              const RenderTarget& target, std::uint32_t views, const glm::vec3& environment);
+              const RenderTarget& target, const ForwardViews& views, const glm::vec3& environment);
 
+  // Builds the pipeline `method` records with (for multiview, that of a full block), so that a
+  // device lacking what it needs fails here, before any recording: GpuError for layered
+  // without shaderOutputLayer.
+  void prepare(ViewMethod method);
+
+  // Views one multiview pass draws on this device (maxMultiviewViewCount; 1 without multiview).
+  std::uint32_t views_per_pass() const { return max_multiview_; }
   std::uint32_t passes_recorded() const { return passes_; }
+  const CullStats& cull_stats() const { return stats_; }
   const ForwardPassDesc& desc() const { return desc_; }
 
  private:
+  VkPipeline pipeline_for(ViewMethod method, std::uint32_t view_count);
+  void begin_pass(VkCommandBuffer cmd, const RenderTarget& target, VkImageView color,
+                  VkImageView depth, std::uint32_t layers, std::uint32_t view_mask,
+                  const glm::vec3& environment, VkPipeline pipeline,
+                  std::span<const VkDescriptorSet> sets) const;
+  void draw_items(VkCommandBuffer cmd, const scene::Scene& scene, const MaterialTextures& materials,
+                  std::span<const DrawItem> items, std::uint32_t view_index,
+                  std::uint32_t first_instance) const;
+
+  const gpu::Device& device_;
   ForwardPassDesc desc_;
   PipelineLayout layout_;
-  Pipeline pipeline_;
+  gpu::ShaderModule vertex_, fragment_;
+  std::optional<gpu::ShaderModule> layered_vertex_;  // loaded on first use
+  std::uint32_t max_multiview_ = 1;
+  bool layered_supported_ = false;
+  Pipeline pipeline_;                                      // per-view passes
+  Pipeline layered_pipeline_;                              // made on first use
+  std::map<std::uint32_t, Pipeline> multiview_pipelines_;  // by view mask, made on first use
   std::uint32_t passes_ = 0;
+  CullStats stats_;
+  std::vector<DrawItem> items_;  // reused from pass to pass
 };
 
 }  // namespace ddish::raster

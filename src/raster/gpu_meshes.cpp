@@ -44,10 +44,14 @@ GpuMeshes::GpuMeshes(const gpu::Device& device, gpu::CommandRunner& runner,
   for (const scene::Mesh& mesh : scene.meshes) {
     MeshRange range;
     range.first_index = static_cast<std::uint32_t>(indices.size());
-    range.index_count = static_cast<std::uint32_t>(mesh.indices.size());
     range.vertex_offset = static_cast<std::int32_t>(vertices.size());
     for (std::size_t i = 0; i < mesh.positions.size(); ++i) vertices.push_back(make_vertex(mesh, i));
-    indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+    ClusteredIndices clustered = cluster_mesh(mesh, range.first_index);
+    range.index_count = static_cast<std::uint32_t>(clustered.indices.size());
+    range.first_cluster = static_cast<std::uint32_t>(clusters_.size());
+    range.cluster_count = static_cast<std::uint32_t>(clustered.clusters.size());
+    indices.insert(indices.end(), clustered.indices.begin(), clustered.indices.end());
+    clusters_.insert(clusters_.end(), clustered.clusters.begin(), clustered.clusters.end());
     ranges_.push_back(range);
   }
   // Vulkan has no empty buffers: a scene without geometry still gets one (unused) element.
@@ -74,6 +78,11 @@ void GpuMeshes::draw(VkCommandBuffer cmd, int mesh) const {
   const MeshRange& r = range(mesh);
   if (r.index_count == 0) return;
   vkCmdDrawIndexed(cmd, r.index_count, 1, r.first_index, r.vertex_offset, 0);
+}
+
+std::span<const Cluster> GpuMeshes::clusters(int mesh) const {
+  const MeshRange& r = range(mesh);
+  return std::span<const Cluster>(clusters_).subspan(r.first_cluster, r.cluster_count);
 }
 
 VkVertexInputBindingDescription GpuMeshes::binding() {

@@ -1,15 +1,18 @@
 // Scene geometry on the GPU: every mesh's vertices and indices packed into one vertex buffer and
 // one index buffer, uploaded once. Instances share their mesh's range and differ only in the
-// transform pushed with each draw, so a moving instance costs nothing to re-upload.
+// transform pushed with each draw, so a moving instance costs nothing to re-upload. Each mesh's
+// indices are stored in cluster order (raster/clusters.h) so views can draw visible clusters only.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
 #include "gpu/buffer.h"
+#include "raster/clusters.h"
 
 namespace ddish::gpu {
 class CommandRunner;
@@ -36,6 +39,8 @@ struct MeshRange {
   std::uint32_t first_index = 0;
   std::uint32_t index_count = 0;
   std::int32_t vertex_offset = 0;
+  std::uint32_t first_cluster = 0;  // into GpuMeshes::clusters()
+  std::uint32_t cluster_count = 0;
 };
 
 class GpuMeshes {
@@ -46,6 +51,9 @@ class GpuMeshes {
   void bind(VkCommandBuffer cmd) const;
   // Records the draw of mesh `mesh` (its whole index range); nothing for an empty mesh.
   void draw(VkCommandBuffer cmd, int mesh) const;
+
+  std::span<const Cluster> clusters(int mesh) const;
+  std::size_t cluster_total() const { return clusters_.size(); }
 
   const MeshRange& range(int mesh) const { return ranges_.at(static_cast<std::size_t>(mesh)); }
   std::size_t mesh_count() const { return ranges_.size(); }
@@ -59,6 +67,7 @@ class GpuMeshes {
   gpu::Buffer vertices_;
   gpu::Buffer indices_;
   std::vector<MeshRange> ranges_;
+  std::vector<Cluster> clusters_;
 };
 
 }  // namespace ddish::raster

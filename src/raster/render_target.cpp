@@ -1,5 +1,6 @@
 #include "raster/render_target.h"
 
+#include <algorithm>
 #include <string>
 
 #include "gpu/device.h"
@@ -39,6 +40,21 @@ RenderTarget::RenderTarget(const gpu::Device& device, const RenderTargetDesc& de
     resolved_views_.push_back(resolved_.make_view(i, 1));
     depth_views_.push_back(depth_.make_view(i, 1));
   }
+  if (desc.block > 1)
+    for (std::uint32_t first = 0; first < desc.layers; first += desc.block) {
+      const std::uint32_t count = std::min(desc.block, desc.layers - first);
+      if (desc.samples > 1) msaa_blocks_.push_back(msaa_color_.make_view(first, count));
+      resolved_blocks_.push_back(resolved_.make_view(first, count));
+      depth_blocks_.push_back(depth_.make_view(first, count));
+    }
+}
+
+std::uint32_t RenderTarget::block_layers(std::uint32_t b) const {
+  return std::min(desc_.block, desc_.layers - b * desc_.block);
+}
+
+VkImageView RenderTarget::color_block_view(std::uint32_t b) const {
+  return multisampled() ? msaa_blocks_.at(b).get() : resolved_blocks_.at(b).get();
 }
 
 VkImageView RenderTarget::color_view(std::uint32_t layer) const {

@@ -25,6 +25,9 @@ struct RenderTargetDesc {
   std::uint32_t height = 0;
   std::uint32_t layers = 1;  // views
   std::uint32_t samples = 1;
+  // > 1: also make views of `block` consecutive layers (the last block may be shorter), what a
+  // multiview pass of that many views draws into.
+  std::uint32_t block = 0;
 };
 
 class RenderTarget {
@@ -43,6 +46,14 @@ class RenderTarget {
   VkImageView color_view(std::uint32_t layer) const;    // what is drawn into
   VkImageView depth_view(std::uint32_t layer) const { return depth_views_.at(layer).get(); }
   const gpu::Image& resolved() const { return resolved_; }
+  // Multiview passes: layers [b * block, b * block + block_layers(b)).
+  std::uint32_t block_count() const { return static_cast<std::uint32_t>(depth_blocks_.size()); }
+  std::uint32_t block_layers(std::uint32_t b) const;
+  VkImageView color_block_view(std::uint32_t b) const;
+  VkImageView depth_block_view(std::uint32_t b) const { return depth_blocks_.at(b).get(); }
+  // Layered passes: every layer at once.
+  VkImageView color_all_view() const { return multisampled() ? msaa_color_.view() : resolved_.view(); }
+  VkImageView depth_all_view() const { return depth_.view(); }
 
   // Records the transitions into attachment layouts (contents discarded) before drawing.
   void begin_frame(VkCommandBuffer cmd) const;
@@ -56,6 +67,7 @@ class RenderTarget {
   gpu::Image resolved_;
   gpu::Image depth_;
   std::vector<gpu::ImageView> msaa_views_, resolved_views_, depth_views_;
+  std::vector<gpu::ImageView> msaa_blocks_, resolved_blocks_, depth_blocks_;
 };
 
 }  // namespace ddish::raster

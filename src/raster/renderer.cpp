@@ -91,6 +91,7 @@ Renderer::Renderer(gpu::Device& device, const scene::Scene& scene, const probes:
                            {frame_.layout(), probe_textures_.layout(), brdf_tables_.layout(),
                             materials_.layout()},
                            samples_, volume.sh_order()));
+  forward_->prepare(options.view_method);
   if (device.info().timestamps_supported()) timer_.emplace(device, kRanges);
   // The probe set must hold data before the first frame binds it.
   probe_textures_.upload(runner_, volume);
@@ -110,7 +111,10 @@ void Renderer::ensure_target(std::uint32_t width, std::uint32_t height, std::uin
       target_->desc().layers == views)
     return;
   target_ = std::make_unique<RenderTarget>(
-      device_, RenderTargetDesc{.width = width, .height = height, .layers = views, .samples = samples_});
+      device_, RenderTargetDesc{.width = width, .height = height, .layers = views, .samples = samples_,
+                                .block = options_.view_method == ViewMethod::multiview
+                                             ? forward_->views_per_pass()
+                                             : 0u});
   const VkDeviceSize pixels = VkDeviceSize{width} * height * views;
   hdr_readback_ = gpu::Buffer(device_, pixels * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               gpu::MemoryUse::readback);
@@ -118,8 +122,8 @@ void Renderer::ensure_target(std::uint32_t width, std::uint32_t height, std::uin
                                   gpu::MemoryUse::readback);
 }
 
-void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene, std::uint32_t views,
-                            std::uint32_t layers) {
+void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
+                            std::span<const scene::View> views, std::uint32_t layers) {
   if (timer_) timer_->reset(cmd);
   if (timer_) timer_->begin(cmd, kShadowRange);
   shadows_.record(cmd, scene, meshes_, materials_, frame_.set(), layers);
@@ -127,14 +131,20 @@ void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene, std:
 
   target_->begin_frame(cmd);
   if (timer_) timer_->begin(cmd, kForwardRange);
+  std::vector<glm::mat4> view_proj;
+  std::vector<glm::vec3> eyes;
+  for (const scene::View& v : views) {
+    view_proj.push_back(v.projection * v.view);
+    eyes.push_back(v.eye());
+  }
   forward_->record(cmd, scene, meshes_, materials_,
-                   {frame_.set(), probe_textures_.set(), brdf_tables_.set()}, *target_, views,
-                   scene.environment());
+                   {frame_.set(), probe_textures_.set(), brdf_tables_.set()}, *target_,
+                   {view_proj, eyes, options_.view_method, options_.cull}, scene.environment());
   if (timer_) timer_->end(cmd, kForwardRange);
   target_->end_frame(cmd);
 
   const gpu::Image& resolved = target_->resolved();
-  for (std::uint32_t v = 0; v < views; ++v)
+  for (std::uint32_t v = 0; v < views.size(); ++v)
     gpu::copy_image_to_buffer(cmd, resolved, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, v, hdr_readback_,
                               resolved.layer_bytes() * v);
   gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -190,7 +200,7 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
   double record_ms = 0.0;
   auto t_submit = t0;
   runner_.run([&](VkCommandBuffer cmd) {
-    record_frame(cmd, scene, n, shadow_layers);
+    record_frame(cmd, scene, views, shadow_layers);
     record_ms = ms_since(t0);
     t_submit = std::chrono::steady_clock::now();
   });
@@ -203,6 +213,7 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
     for (const scene::Instance& inst : scene.instances) shadow_transforms_.push_back(inst.transform);
   }
   out.stats.forward_passes = forward_->passes_recorded();
+  out.stats.cull = forward_->cull_stats();
   out.stats.tonemap_passes = 1;
   if (timer_) {
     const std::vector<double> ms = timer_->all_milliseconds();

@@ -1,0 +1,162 @@
+// Raster cost of N views per frame for each way of recording them (raster/view_method.h), with
+// and without cluster culling: ms per frame for a light-field rig (the Looking Glass camera
+// model of src/display) around the scene's camera. Shadow maps of a static scene are drawn once
+// and kept, so the timed frames are the forward passes, the tonemap and the readback. Probes are
+// left empty: the per-view cost does not depend on what they hold.
+//
+//   raster_views [SCENE] [--views 1,6,12,48] [--size 420x560] [--frames 3] [--msaa 0] [--chunk 0]
+//
+// --chunk K renders a frame of N views as render() calls of at most K views each (summed): on a
+// loaded 2-core machine a 48-view lavapipe frame can outlast the 60 s fence wait of
+// gpu::CommandRunner. Layered then records ceil(N / K) passes instead of one.
+//
+// Prints one CSV row per method x culling x N (configurations interleaved frame by frame): median over the frames of the whole frame
+// (record + GPU + readback), the forward pass's GPU time (timestamps), the CPU recording time,
+// and the triangles and draw calls the culling left.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <memory>
+#include <span>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "display/lightfield_rig.h"
+#include "display/quilt_layout.h"
+#include "display/view_set.h"
+#include "gpu/context.h"
+#include "gpu/device.h"
+#include "probes/probe_grid.h"
+#include "probes/probe_volume.h"
+#include "raster/renderer.h"
+#include "scene/gltf_loader.h"
+#include "scene/scene.h"
+
+namespace {
+
+using namespace ddish;
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+std::vector<int> parse_list(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, ',');) out.push_back(std::stoi(item));
+  return out;
+}
+
+std::vector<scene::View> rig(const scene::Scene& s, int views, int width, int height) {
+  const scene::Camera* camera = s.default_camera();
+  scene::Camera fallback;
+  if (!camera) {
+    fallback.eye = s.bounds().center() + glm::vec3(0, 0, 1.5f * glm::length(s.bounds().extent()));
+    camera = &fallback;
+  }
+  const float focal = display::focal_distance_to_scene_center(s, camera->eye, camera->forward);
+  display::LightFieldParams params;
+  params.views = views;
+  const display::QuiltLayout layout = display::layout_from_tiles(views, 1, width, height);
+  return display::lightfield_rig(display::base_camera(*camera, focal), params, layout,
+                                 float(width) / float(height)).views;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  std::string path = "/work/shared/scenes/breakfast_room/BreakfastRoom.gltf";
+  std::vector<int> counts{1, 6, 12, 48};
+  int width = 420, height = 560, frames = 3;
+  std::uint32_t msaa = 0;
+  int chunk = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--views") counts = parse_list(next());
+    else if (a == "--size") std::sscanf(next().c_str(), "%dx%d", &width, &height);
+    else if (a == "--frames") frames = std::stoi(next());
+    else if (a == "--chunk") chunk = std::stoi(next());
+    else if (a == "--msaa") msaa = static_cast<std::uint32_t>(std::stoi(next()));
+    else path = a;
+  }
+  const scene::Scene s = scene::load_scene(path);
+  gpu::Context context({.application_name = "raster_views"});
+  gpu::Device& device = context.device();
+  const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {4, 4, 4}), 2);
+  std::printf("# %s, %zu triangles, %dx%d, device %s, %d frames (median)\n", path.c_str(),
+              [&] { std::size_t t = 0; for (const auto& m : s.meshes) t += m.triangle_count(); return t; }(),
+              width, height, device.info().name.c_str(), frames);
+  std::printf("method,cull,views,passes,frame_ms,ms_per_view,forward_gpu_ms,record_ms,triangles,draws\n");
+  // Every configuration renders each frame in turn (paired runs): on a shared machine the load
+  // changes from minute to minute, and interleaving spreads it evenly over the configurations.
+  struct Config {
+    raster::ViewMethod method;
+    bool cull;
+    std::unique_ptr<raster::Renderer> renderer;
+    std::vector<double> frame, gpu, record;
+    raster::FrameStats last;
+  };
+  std::vector<Config> configs;
+  for (raster::ViewMethod method :
+       {raster::ViewMethod::per_view, raster::ViewMethod::multiview, raster::ViewMethod::layered})
+    for (bool cull : {false, true}) {
+      raster::RendererOptions options;
+      options.msaa = msaa;
+      options.view_method = method;
+      options.cull = cull;
+      configs.push_back({method, cull, std::make_unique<raster::Renderer>(device, s, volume, options), {}, {}, {}, {}});
+    }
+  for (int n : counts) {
+    const std::vector<scene::View> all_views = rig(s, n, width, height);
+    // The frame's render() calls: all views at once, or chunks of --chunk views.
+    const std::size_t step = chunk > 0 ? std::size_t(chunk) : all_views.size();
+    auto render_frame = [&](raster::Renderer& r) {
+      raster::FrameStats sum;
+      for (std::size_t first = 0; first < all_views.size(); first += step) {
+        const std::size_t count = std::min(step, all_views.size() - first);
+        const raster::FrameStats st = r.render(s, std::span(all_views).subspan(first, count)).stats;
+        sum.forward_passes += st.forward_passes;
+        sum.cull += st.cull;
+        sum.record_ms += st.record_ms;
+        sum.execute_ms += st.execute_ms;
+        sum.readback_ms += st.readback_ms;
+        sum.forward_gpu_ms += st.forward_gpu_ms;
+      }
+      return sum;
+    };
+    for (Config& c : configs) {
+      render_frame(*c.renderer);  // warm-up: target, pipelines, shadow maps
+      c.frame.clear();
+      c.gpu.clear();
+      c.record.clear();
+    }
+    for (int f = 0; f < frames; ++f)
+      for (Config& c : configs) {
+        const raster::FrameStats st = render_frame(*c.renderer);
+        c.last = st;
+        c.frame.push_back(st.record_ms + st.execute_ms + st.readback_ms);
+        c.gpu.push_back(st.forward_gpu_ms);
+        c.record.push_back(st.record_ms);
+      }
+    for (const Config& c : configs) {
+      const double ms = median(c.frame);
+      std::printf("%s,%s,%d,%u,%.1f,%.1f,%.1f,%.2f,%llu,%llu\n",
+                  std::string(raster::to_string(c.method)).c_str(), c.cull ? "on" : "off", n,
+                  c.last.forward_passes, ms, ms / n, median(c.gpu), median(c.record),
+                  static_cast<unsigned long long>(c.last.cull.triangles_drawn),
+                  static_cast<unsigned long long>(c.last.cull.draws));
+    }
+    std::fflush(stdout);
+  }
+  return 0;
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "raster_views: %s\n", e.what());
+  return 1;
+}
