@@ -125,7 +125,9 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
       metrics::StageTimer timer(timings, "output");
       for (auto& path : sink(k, frame)) result.written.push_back(std::move(path));
     }
-    if (o.update_probes)
+    // Frame 0 is not representative: it classifies every probe and builds shadow maps and
+    // pipelines once; teaching the budget controller its cost would starve the next frames.
+    if (o.update_probes && k > 0)
       scheduler_.observe({.frame_ms = timings.total_ms(),
                           .probe_ms = update.seconds * 1e3,
                           .paths = update.paths,

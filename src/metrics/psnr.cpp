@@ -3,22 +3,16 @@
 #include <cmath>
 #include <limits>
 
+#include "metrics/channel_mean.h"
 #include "metrics/color.h"
 
 namespace ddish::metrics {
 
 double display_mse(const Image& image, const Image& reference) {
-  require_same_size(image, reference);
-  if (image.empty()) return 0.0;
-  // Accumulated in double: a 4K image has 25 M terms, far more than float keeps exactly.
-  double sum = 0.0;
-  const auto& a = image.pixels();
-  const auto& b = reference.pixels();
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    glm::dvec3 d = glm::dvec3(display_value(a[i])) - glm::dvec3(display_value(b[i]));
+  return channel_mean(image, reference, [](double& sum, const glm::vec3& a, const glm::vec3& b) {
+    glm::dvec3 d = glm::dvec3(display_value(a)) - glm::dvec3(display_value(b));
     sum += glm::dot(d, d);
-  }
-  return sum / (3.0 * static_cast<double>(a.size()));
+  });
 }
 
 double psnr(const Image& image, const Image& reference) {

@@ -7,6 +7,7 @@
 
 #include "gpu/device.h"
 #include "gpu/error.h"
+#include "raster/probe_descriptor_set.h"
 #include "trace/ggx.h"
 #include "trace/specular_albedo.h"
 
@@ -72,29 +73,14 @@ FrameResources::FrameResources(const gpu::Device& device, std::uint32_t max_ligh
       {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
       {5, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr},
   }};
-  VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layout_info.bindingCount = static_cast<std::uint32_t>(bindings.size());
-  layout_info.pBindings = bindings.data();
-  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
-  gpu::check(vkCreateDescriptorSetLayout(device_, &layout_info, nullptr, &layout),
-             "vkCreateDescriptorSetLayout");
-  layout_ = {device_, layout};
+  layout_ = make_descriptor_set_layout(device_, bindings);
 
   const std::array<VkDescriptorPoolSize, 3> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                                    {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
                                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1}}};
-  VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pool_info.maxSets = 1;
-  pool_info.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
-  pool_info.pPoolSizes = sizes.data();
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  gpu::check(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
-  pool_ = {device_, pool};
-  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  alloc.descriptorPool = pool;
-  alloc.descriptorSetCount = 1;
-  alloc.pSetLayouts = &layout;
-  gpu::check(vkAllocateDescriptorSets(device_, &alloc, &set_), "vkAllocateDescriptorSets");
+  pool_ = make_descriptor_pool(device_, sizes, 1);
+  const VkDescriptorSetLayout layout = layout_.get();
+  allocate_descriptor_sets(device_, pool_.get(), {&layout, 1}, &set_);
 
   const std::array<VkDescriptorBufferInfo, 5> infos{
       {frame_.descriptor(), views_.descriptor(), lights_.descriptor(), layers_.descriptor(),

@@ -9,6 +9,7 @@
 #include "gpu/device.h"
 #include "gpu/error.h"
 #include "raster/gpu_types.h"
+#include "raster/probe_descriptor_set.h"
 #include "scene/scene.h"
 
 namespace ddish::raster {
@@ -132,13 +133,7 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
   bindings[0] = {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
   for (std::uint32_t i = 1; i <= kSlots; ++i)
     bindings[i] = {i, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
-  VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layout_info.bindingCount = static_cast<std::uint32_t>(bindings.size());
-  layout_info.pBindings = bindings.data();
-  VkDescriptorSetLayout layout = VK_NULL_HANDLE;
-  gpu::check(vkCreateDescriptorSetLayout(device_, &layout_info, nullptr, &layout),
-             "vkCreateDescriptorSetLayout");
-  layout_ = {device_, layout};
+  layout_ = make_descriptor_set_layout(device_, bindings);
 
   // Scene materials, then glTF's default material for meshes without one.
   std::vector<scene::Material> materials = scene.materials;
@@ -152,20 +147,10 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
 
   std::array<VkDescriptorPoolSize, 2> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, count},
                                              {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count * kSlots}}};
-  VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pool_info.maxSets = count;
-  pool_info.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
-  pool_info.pPoolSizes = sizes.data();
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  gpu::check(vkCreateDescriptorPool(device_, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
-  pool_ = {device_, pool};
-  std::vector<VkDescriptorSetLayout> layouts(count, layout);
+  pool_ = make_descriptor_pool(device_, sizes, count);
+  const std::vector<VkDescriptorSetLayout> layouts(count, layout_.get());
   sets_.resize(count);
-  VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  alloc.descriptorPool = pool;
-  alloc.descriptorSetCount = count;
-  alloc.pSetLayouts = layouts.data();
-  gpu::check(vkAllocateDescriptorSets(device_, &alloc, sets_.data()), "vkAllocateDescriptorSets");
+  allocate_descriptor_sets(device_, pool_.get(), layouts, sets_.data());
 
   for (std::uint32_t m = 0; m < count; ++m) {
     const scene::Material& mat = materials[m];

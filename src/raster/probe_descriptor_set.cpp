@@ -6,32 +6,45 @@
 
 namespace ddish::raster {
 
-OwnedDescriptorSet::OwnedDescriptorSet(VkDevice device,
-                                       std::span<const VkDescriptorSetLayoutBinding> bindings)
-    : device_(device) {
+DescriptorSetLayout make_descriptor_set_layout(VkDevice device,
+                                               std::span<const VkDescriptorSetLayoutBinding> bindings) {
   VkDescriptorSetLayoutCreateInfo layout_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layout_info.bindingCount = static_cast<std::uint32_t>(bindings.size());
   layout_info.pBindings = bindings.data();
   VkDescriptorSetLayout layout = VK_NULL_HANDLE;
   gpu::check(vkCreateDescriptorSetLayout(device, &layout_info, nullptr, &layout),
              "vkCreateDescriptorSetLayout");
-  layout_ = {device, layout};
+  return {device, layout};
+}
 
-  std::vector<VkDescriptorPoolSize> sizes;
-  for (const auto& b : bindings) sizes.push_back({b.descriptorType, b.descriptorCount});
+DescriptorPool make_descriptor_pool(VkDevice device, std::span<const VkDescriptorPoolSize> sizes,
+                                    std::uint32_t max_sets) {
   VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pool_info.maxSets = 1;
+  pool_info.maxSets = max_sets;
   pool_info.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
   pool_info.pPoolSizes = sizes.data();
   VkDescriptorPool pool = VK_NULL_HANDLE;
   gpu::check(vkCreateDescriptorPool(device, &pool_info, nullptr, &pool), "vkCreateDescriptorPool");
-  pool_ = {device, pool};
+  return {device, pool};
+}
 
+void allocate_descriptor_sets(VkDevice device, VkDescriptorPool pool,
+                              std::span<const VkDescriptorSetLayout> layouts, VkDescriptorSet* sets) {
   VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   alloc.descriptorPool = pool;
-  alloc.descriptorSetCount = 1;
-  alloc.pSetLayouts = &layout;
-  gpu::check(vkAllocateDescriptorSets(device, &alloc, &set_), "vkAllocateDescriptorSets");
+  alloc.descriptorSetCount = static_cast<std::uint32_t>(layouts.size());
+  alloc.pSetLayouts = layouts.data();
+  gpu::check(vkAllocateDescriptorSets(device, &alloc, sets), "vkAllocateDescriptorSets");
+}
+
+OwnedDescriptorSet::OwnedDescriptorSet(VkDevice device,
+                                       std::span<const VkDescriptorSetLayoutBinding> bindings)
+    : device_(device), layout_(make_descriptor_set_layout(device, bindings)) {
+  std::vector<VkDescriptorPoolSize> sizes;
+  for (const auto& b : bindings) sizes.push_back({b.descriptorType, b.descriptorCount});
+  pool_ = make_descriptor_pool(device, sizes, 1);
+  const VkDescriptorSetLayout layout = layout_.get();
+  allocate_descriptor_sets(device, pool_.get(), {&layout, 1}, &set_);
 }
 
 void OwnedDescriptorSet::write_uniform_buffer(std::uint32_t binding,

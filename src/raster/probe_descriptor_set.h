@@ -1,6 +1,7 @@
 // A descriptor set that owns its layout and pool, and the linear clamp-to-edge sampler, shared
 // by ProbeTextures and BrdfTables: each exposes one set that a pipeline layout names at a fixed
-// set number (PROBE_SET, BRDF_SET in probe_lighting.glsl) and binds as it is.
+// set number (PROBE_SET, BRDF_SET in probe_lighting.glsl) and binds as it is. The layout, pool
+// and allocation steps are also free functions, for FrameResources and MaterialTextures.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +12,19 @@
 #include "gpu/handle.h"
 
 namespace ddish::raster {
+
+using DescriptorSetLayout = gpu::DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout>;
+using DescriptorPool = gpu::DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool>;
+
+// The layout of `bindings`. Throws gpu::GpuError when vkCreateDescriptorSetLayout fails.
+DescriptorSetLayout make_descriptor_set_layout(VkDevice device,
+                                               std::span<const VkDescriptorSetLayoutBinding> bindings);
+// A pool of at most `max_sets` sets holding `sizes` descriptors in all. Throws gpu::GpuError.
+DescriptorPool make_descriptor_pool(VkDevice device, std::span<const VkDescriptorPoolSize> sizes,
+                                    std::uint32_t max_sets);
+// One set from `pool` per entry of `layouts`, written to `sets` (as many). Throws gpu::GpuError.
+void allocate_descriptor_sets(VkDevice device, VkDescriptorPool pool,
+                              std::span<const VkDescriptorSetLayout> layouts, VkDescriptorSet* sets);
 
 class OwnedDescriptorSet {
  public:
@@ -28,8 +42,8 @@ class OwnedDescriptorSet {
 
  private:
   VkDevice device_ = VK_NULL_HANDLE;
-  gpu::DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout> layout_;
-  gpu::DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool> pool_;
+  DescriptorSetLayout layout_;
+  DescriptorPool pool_;
   VkDescriptorSet set_ = VK_NULL_HANDLE;  // freed with the pool
 };
 

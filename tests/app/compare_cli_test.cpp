@@ -1,16 +1,11 @@
 // `ddish compare` end to end: small images written here as binary PPM (8-bit, so display
 // values, sRGB-encoded) and PFM (float, so linear values), figures checked against the
 // formulas worked out in the test, and the exit code and one-line message for bad input.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,57 +13,21 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using cli::quote;
+using cli::Result;
 
-// 'text' for the shell. Appended piece by piece: GCC 12 at -O3 warns (-Wrestrict, a known false
-// positive) on "'" + std::string + "'" chains.
-std::string quote(const std::string& text) {
-  std::string q;
-  q += '\'';
-  q += text;
-  q += '\'';
-  return q;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-class CompareCli : public ::testing::Test {
+class CompareCli : public cli::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("ddish_compare_cli_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  CompareCli() : TempDirTest("ddish_compare_cli_") {}
 
-  Result run(const std::string& args) const {
-    std::string cmd = quote(DDISH_EXE);
-    cmd += " compare ";
-    cmd += args;
-    cmd += " >";
-    cmd += quote((dir_ / "stdout").string());
-    cmd += " 2>";
-    cmd += quote((dir_ / "stderr").string());
-    int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir_ / "stdout");
-    r.err = slurp(dir_ / "stderr");
-    return r;
-  }
+  // `ddish compare ARGS`.
+  Result run(const std::string& args) const { return TempDirTest::run("compare " + args); }
 
   // A w x h grey PPM whose every channel byte is `value` (display value value / 255).
   std::string ppm(const std::string& name, int w, int h, std::uint8_t value) const {
@@ -88,8 +47,6 @@ class CompareCli : public ::testing::Test {
       for (float v : {r, g, b}) f.write(reinterpret_cast<const char*>(&v), sizeof v);
     return quote(p.string());
   }
-
-  fs::path dir_;
 };
 
 double srgb_decode(double v) {

@@ -2,40 +2,23 @@
 // gets exit code 2 and one line `ddish: error: FILE: PROBLEM` on stderr.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
+
+#include "cli_runner.h"
 
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using cli::Result;
 
-std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
+// `ddish ARGS` with its output captured in a folder of its own, removed afterwards.
 Result ddish(const std::string& args) {
   auto dir = std::filesystem::temp_directory_path() / ("ddish_cli_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
-  std::string cmd = std::string("'") + DDISH_EXE + "' " + args + " >'" + (dir / "out").string() +
-                    "' 2>'" + (dir / "err").string() + "'";
-  int status = std::system(cmd.c_str());
-  Result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(dir / "out");
-  r.err = slurp(dir / "err");
+  Result r = cli::run_ddish(dir, args);
   std::filesystem::remove_all(dir);
   return r;
 }

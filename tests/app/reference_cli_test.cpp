@@ -1,72 +1,30 @@
 // `ddish reference` end to end on a tiny Cornell box: the files it writes, the convergence CSV,
 // and one line with exit code 2 for bad options. Image content is tested in
 // tests/trace/reference_test.cpp; here it is the command line.
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "cli_runner.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using cli::cornell;
+using cli::quote;
+using cli::Result;
+using cli::slurp;
 
-std::string quote(const std::string& text) {
-  std::string q;
-  q += '\'';
-  q += text;
-  q += '\'';
-  return q;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-class ReferenceCli : public ::testing::Test {
+class ReferenceCli : public cli::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("ddish_reference_cli_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  ReferenceCli() : TempDirTest("ddish_reference_cli_") {}
 
-  Result run(const std::string& args) const {
-    std::string cmd = quote(DDISH_EXE);
-    cmd += " reference ";
-    cmd += args;
-    cmd += " >";
-    cmd += quote((dir_ / "stdout").string());
-    cmd += " 2>";
-    cmd += quote((dir_ / "stderr").string());
-    int status = std::system(cmd.c_str());
-    Result r;
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir_ / "stdout");
-    r.err = slurp(dir_ / "stderr");
-    return r;
-  }
-
-  static std::string cornell() { return quote(std::string(DDISH_SOURCE_DIR) + "/scenes/cornell_box.gltf"); }
-
-  fs::path dir_;
+  // `ddish reference ARGS`.
+  Result run(const std::string& args) const { return TempDirTest::run("reference " + args); }
 };
 
 TEST_F(ReferenceCli, WritesImagesMetadataAndConvergence) {

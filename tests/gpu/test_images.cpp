@@ -43,6 +43,20 @@ VkRenderingInfo rendering(const ImageDesc& desc, std::uint32_t view_mask) {
   return info;
 }
 
+// Moves `image` from `layout` (last written at `stage` with `access`) to transfer source, copies
+// its first `layers` layers one after another into `out`, and makes the copy visible to the host.
+void copy_layers_to_host(VkCommandBuffer cmd, const Image& image, VkImageLayout layout,
+                         VkPipelineStageFlags stage, VkAccessFlags access, const Buffer& out,
+                         std::uint32_t layers = 1) {
+  image_barrier(cmd, image, layout, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, stage, access,
+                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  for (std::uint32_t layer = 0; layer < layers; ++layer)
+    copy_image_to_buffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layer, out,
+                         layer * image.layer_bytes());
+  memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                 VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+}
+
 void expect_all_texels(const std::vector<Rgba8>& texels, Rgba8 expected, const char* what) {
   std::size_t wrong = 0;
   for (const Rgba8& t : texels) wrong += t != expected;
@@ -81,15 +95,8 @@ TEST_F(Images, LayersClearSeparatelyAndReadBack) {
       vkCmdClearColorImage(cmd, image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &clear, 1,
                            &range);
     }
-    image_barrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_READ_BIT);
-    for (std::uint32_t layer = 0; layer < 3; ++layer)
-      copy_image_to_buffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layer, out,
-                           layer * image.layer_bytes());
-    memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    copy_layers_to_host(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                        VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, out, 3);
   });
   const std::size_t texels = 37 * 21;
   for (std::uint32_t layer = 0; layer < 3; ++layer)
@@ -129,16 +136,9 @@ TEST_F(Images, MultiviewRenderingClearsEveryViewLayer) {
     info.pColorAttachments = &target;
     vkCmdBeginRendering(cmd, &info);
     vkCmdEndRendering(cmd);
-    image_barrier(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                  VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_READ_BIT);
-    for (std::uint32_t layer = 0; layer < views; ++layer)
-      copy_image_to_buffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, layer, out,
-                           layer * image.layer_bytes());
-    memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    copy_layers_to_host(cmd, image, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, out, views);
   });
   for (std::uint32_t layer = 0; layer < views; ++layer)
     expect_all_texels(out.read<Rgba8>(16 * 9, layer * image.layer_bytes()), sky, "view layer");
@@ -176,14 +176,9 @@ TEST_F(Images, MsaaColourResolves) {
     info.pColorAttachments = &target;
     vkCmdBeginRendering(cmd, &info);
     vkCmdEndRendering(cmd);
-    image_barrier(cmd, resolved, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                  VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
-                  VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_READ_BIT);
-    copy_image_to_buffer(cmd, resolved, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, out);
-    memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    copy_layers_to_host(cmd, resolved, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, out);
   });
   expect_all_texels(out.read<Rgba8>(64), grey, "resolved MSAA");
   // Multisampled images are rejected before anything is recorded.
@@ -213,13 +208,8 @@ TEST_F(Images, DepthClearsAndReadsBack) {
     info.pDepthAttachment = &target;
     vkCmdBeginRendering(cmd, &info);
     vkCmdEndRendering(cmd);
-    image_barrier(cmd, depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL,
-                  VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, tests,
-                  VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_TRANSFER_READ_BIT);
-    copy_image_to_buffer(cmd, depth, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, 0, out);
-    memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    copy_layers_to_host(cmd, depth, VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL, tests,
+                        VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT, out);
   });
   for (float d : out.read<float>(64)) ASSERT_EQ(d, 0.375f);
 }
