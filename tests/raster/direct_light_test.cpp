@@ -93,8 +93,7 @@ TEST_P(DirectLightTest, MatchesTracerBsdfAndShadows) {
 
   const trace::Bsdf bsdf({glm::vec3(ground_material.base_color), ground_material.metallic,
                           ground_material.roughness});
-  int lit = 0, lit_bad = 0, shadowed = 0, shadow_bad = 0;
-  double worst = 0.0;
+  ShadowTally tally;
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       const scene::Ray ray = scene::view_ray(view, float(x) + 0.5f, float(y) + 0.5f);
@@ -111,25 +110,16 @@ TEST_P(DirectLightTest, MatchesTracerBsdfAndShadows) {
       const glm::vec3 expected =
           bsdf.eval(local(-ray.direction), local(ls.wi)) * ls.wi.y * ls.radiance;
       const glm::vec3 got = out.views[0].linear[std::size_t(y) * size + std::size_t(x)];
-      const float clearance = ray_clearance(p, ls.wi, std::min(ls.distance, 100.0f));
-      const float e = glm::length(expected);
-      if (clearance > kSphereRadius * 1.35f) {
-        ++lit;
-        const double err = glm::length(got - expected) / (e + 1e-3);
-        worst = std::max(worst, err);
-        if (err > 0.03) ++lit_bad;
-      } else if (clearance < kSphereRadius * 0.7f && e > 0.05f) {
-        ++shadowed;
-        if (glm::length(got) > 0.05f * e) ++shadow_bad;
-      }
+      tally.add(got, expected, ray_clearance(p, ls.wi, std::min(ls.distance, 100.0f)),
+                kSphereRadius);
     }
-  std::printf("%s: %d lit pixels (worst relative error %.4f), %d in shadow\n", c.name.c_str(), lit,
-              worst, shadowed);
+  std::printf("%s: %d lit pixels (worst relative error %.4f), %d in shadow\n", c.name.c_str(),
+              tally.lit, tally.worst, tally.shadowed);
   // Enough pixels of each kind for the checks to mean something.
-  EXPECT_GT(lit, 1500) << c.name;
-  EXPECT_GT(shadowed, 15) << c.name;
-  EXPECT_EQ(lit_bad, 0) << c.name << ": lit pixels off by > 3 %, worst " << worst;
-  EXPECT_EQ(shadow_bad, 0) << c.name << ": shadowed pixels with light leaking in";
+  EXPECT_GT(tally.lit, 1500) << c.name;
+  EXPECT_GT(tally.shadowed, 15) << c.name;
+  EXPECT_EQ(tally.lit_bad, 0) << c.name << ": lit pixels off by > 3 %, worst " << tally.worst;
+  EXPECT_EQ(tally.shadow_bad, 0) << c.name << ": shadowed pixels with light leaking in";
 }
 
 INSTANTIATE_TEST_SUITE_P(Lights, DirectLightTest, ::testing::Values(0, 1, 2),

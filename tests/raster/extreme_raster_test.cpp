@@ -342,8 +342,7 @@ TEST_P(ExtremeShadowScale, SunShadowIsWhereItShouldBeWithoutAcne) {
     const float t = std::clamp(glm::dot(centre - p, d), 0.0f, dist);
     return glm::length(p + d * t - centre);
   };
-  int lit = 0, acne = 0, shadowed = 0, leaks = 0;
-  double worst = 0.0;
+  ShadowTally tally;  // lit_bad counts acne, shadow_bad counts leaks
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
       const scene::Ray ray = scene::view_ray(view, float(x) + 0.5f, float(y) + 0.5f);
@@ -357,24 +356,14 @@ TEST_P(ExtremeShadowScale, SunShadowIsWhereItShouldBeWithoutAcne) {
       const glm::vec3 expected = bsdf.eval(local(-ray.direction), local(ls.wi)) * ls.wi.y * ls.radiance;
       const glm::vec3 got = out.views[0].linear[std::size_t(y) * size + std::size_t(x)];
       ASSERT_TRUE(finite(got));
-      const float c = clearance(p, ls.wi, 100.0f * k);
-      const float e = glm::length(expected);
-      if (c > radius * 1.35f) {
-        ++lit;
-        const double err = glm::length(got - expected) / (e + 1e-3);
-        worst = std::max(worst, err);
-        if (err > 0.03) ++acne;
-      } else if (c < radius * 0.7f && e > 0.05f) {
-        ++shadowed;
-        if (glm::length(got) > 0.05f * e) ++leaks;
-      }
+      tally.add(got, expected, clearance(p, ls.wi, 100.0f * k), radius);
     }
   std::printf("[extreme] shadows at scale %g: %d lit (%d wrong, worst %.4f), %d shadowed (%d lit)\n",
-              double(k), lit, acne, worst, shadowed, leaks);
-  EXPECT_GT(lit, 1500);
-  EXPECT_GT(shadowed, 15);
-  EXPECT_EQ(acne, 0) << "worst relative error " << worst;
-  EXPECT_EQ(leaks, 0);
+              double(k), tally.lit, tally.lit_bad, tally.worst, tally.shadowed, tally.shadow_bad);
+  EXPECT_GT(tally.lit, 1500);
+  EXPECT_GT(tally.shadowed, 15);
+  EXPECT_EQ(tally.lit_bad, 0) << "worst relative error " << tally.worst;
+  EXPECT_EQ(tally.shadow_bad, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Scales, ExtremeShadowScale, ::testing::Values(1e-3f, 1.0f, 1e4f),

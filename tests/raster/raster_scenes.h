@@ -2,6 +2,7 @@
 // material each, posed and ready to render, plus the probe volumes they are lit by.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -11,6 +12,27 @@
 #include "scene/scene.h"
 
 namespace ddish::raster::test {
+
+// Sorts the pixels of a shadow test: a pixel whose light ray clears the occluder by a wide margin
+// must match the expected direct light to 3 %; one deep in the occluder's shadow must receive
+// less than 5 % of it. Pixels near the penumbra are left out (PCF blurs them by design).
+struct ShadowTally {
+  int lit = 0, lit_bad = 0, shadowed = 0, shadow_bad = 0;
+  double worst = 0.0;  // worst relative error over the lit pixels
+
+  void add(const glm::vec3& got, const glm::vec3& expected, float clearance, float radius) {
+    const float e = glm::length(expected);
+    if (clearance > radius * 1.35f) {
+      ++lit;
+      const double err = glm::length(got - expected) / (e + 1e-3);
+      worst = std::max(worst, err);
+      if (err > 0.03) ++lit_bad;
+    } else if (clearance < radius * 0.7f && e > 0.05f) {
+      ++shadowed;
+      if (glm::length(got) > 0.05f * e) ++shadow_bad;
+    }
+  }
+};
 
 inline constexpr float kTestPi = 3.14159265358979f;
 
