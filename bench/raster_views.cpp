@@ -5,10 +5,14 @@
 // left empty: the per-view cost does not depend on what they hold.
 //
 //   raster_views [SCENE] [--views 1,6,12,48] [--size 420x560] [--frames 3] [--msaa 0] [--chunk 0]
+//                [--method per-view|multiview|layered] [--only-view K] [--per-chunk]
 //
 // --chunk K renders a frame of N views as render() calls of at most K views each (summed): on a
 // loaded 2-core machine a 48-view lavapipe frame can outlast the 60 s fence wait of
-// gpu::CommandRunner. Layered then records ceil(N / K) passes instead of one.
+// gpu::CommandRunner. Layered then records ceil(N / K) passes instead of one. --per-chunk prints
+// each render() call's forward GPU time and first eye to stderr (with --chunk 1: per view), and
+// --only-view K renders only view K of the N-view rig: together they find a view that costs far
+// more than its neighbours (how the Sponza 48-view cliff was traced to anisotropic filtering).
 //
 // Prints one CSV row per method x culling x N (configurations interleaved frame by frame): median over the frames of the whole frame
 // (record + GPU + readback), the forward pass's GPU time (timestamps), the CPU recording time,
@@ -73,6 +77,9 @@ int main(int argc, char** argv) try {
   int width = 420, height = 560, frames = 3;
   std::uint32_t msaa = 0;
   int chunk = 0;
+  bool per_chunk = false;
+  std::string only_method;
+  int only_view = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -83,14 +90,19 @@ int main(int argc, char** argv) try {
     else if (a == "--size") std::sscanf(next().c_str(), "%dx%d", &width, &height);
     else if (a == "--frames") frames = std::stoi(next());
     else if (a == "--chunk") chunk = std::stoi(next());
+    else if (a == "--per-chunk") per_chunk = true;
+    else if (a == "--method") only_method = next();
+    else if (a == "--only-view") only_view = std::stoi(next());
     else if (a == "--msaa") msaa = static_cast<std::uint32_t>(std::stoi(next()));
     else path = a;
   }
+  if (!only_method.empty() && !raster::parse_view_method(only_method))
+    throw std::invalid_argument("--method must be per-view, multiview or layered, not " + only_method);
   const scene::Scene s = scene::load_scene(path);
   gpu::Context context({.application_name = "raster_views"});
   gpu::Device& device = context.device();
   const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {4, 4, 4}), 2);
-  std::printf("# %s, %zu triangles, %dx%d, device %s, %d frames (median)\n", path.c_str(),
+  std::printf("# %s, %zu mesh triangles (before instancing), %dx%d, device %s, %d frames (median)\n", path.c_str(),
               [&] { std::size_t t = 0; for (const auto& m : s.meshes) t += m.triangle_count(); return t; }(),
               width, height, device.info().name.c_str(), frames);
   std::printf("method,cull,views,passes,frame_ms,ms_per_view,forward_gpu_ms,record_ms,triangles,draws\n");
@@ -107,6 +119,7 @@ int main(int argc, char** argv) try {
   for (raster::ViewMethod method :
        {raster::ViewMethod::per_view, raster::ViewMethod::multiview, raster::ViewMethod::layered})
     for (bool cull : {false, true}) {
+      if (!only_method.empty() && only_method != raster::to_string(method)) continue;
       raster::RendererOptions options;
       options.msaa = msaa;
       options.view_method = method;
@@ -114,7 +127,8 @@ int main(int argc, char** argv) try {
       configs.push_back({method, cull, std::make_unique<raster::Renderer>(device, s, volume, options), {}, {}, {}, {}});
     }
   for (int n : counts) {
-    const std::vector<scene::View> all_views = rig(s, n, width, height);
+    std::vector<scene::View> all_views = rig(s, n, width, height);
+    if (only_view >= 0) all_views = {all_views.at(static_cast<std::size_t>(only_view))};
     // The frame's render() calls: all views at once, or chunks of --chunk views.
     const std::size_t step = chunk > 0 ? std::size_t(chunk) : all_views.size();
     auto render_frame = [&](raster::Renderer& r) {
@@ -122,6 +136,10 @@ int main(int argc, char** argv) try {
       for (std::size_t first = 0; first < all_views.size(); first += step) {
         const std::size_t count = std::min(step, all_views.size() - first);
         const raster::FrameStats st = r.render(s, std::span(all_views).subspan(first, count)).stats;
+        if (per_chunk)
+          std::fprintf(stderr, "chunk %zu..%zu forward_gpu_ms %.1f first eye %.4f,%.4f,%.4f\n", first,
+                       first + count - 1, st.forward_gpu_ms, all_views[first].eye().x,
+                       all_views[first].eye().y, all_views[first].eye().z);
         sum.forward_passes += st.forward_passes;
         sum.cull += st.cull;
         sum.record_ms += st.record_ms;
