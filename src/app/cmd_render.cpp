@@ -111,7 +111,7 @@ void print_progress(const FrameReport& r, int frames) {
                raster_ms(t), raster_ms(t) / std::max(1u, c.views), t.stage_ms("shadow_gpu"),
                t.stage_ms("forward_gpu"), t.stage_ms("tonemap_gpu"), t.stage_ms("output"),
                t.total_ms(), budget.c_str());
-  if (r.frame == 0)
+  if (r.frame == 0 && c.probe_updates > 0)
     std::fprintf(stderr, "render: %u of %u probes inside geometry: never traced or uploaded%s\n",
                  c.probes_inactive, c.probes_active + c.probes_inactive,
                  c.probes_unclassified > 0
@@ -186,6 +186,10 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   options.time = a.time;
   options.fps = a.fps;
   options.every = a.every;
+  // Without indirect light nothing reads the probes: tracing them would only cost time (and
+  // would make a direct-light-only run's frame time meaningless as a baseline).
+  options.update_probes = !a.no_indirect;
+  if (a.no_indirect) std::fprintf(stderr, "render: --no-indirect: probes are neither traced nor drawn\n");
   const FrameSink sink = [&](int k, const raster::FrameOutput& frame) {
     const std::string tag = a.every ? fmt::format("{:04d}", k) : "";
     return writer.write(frame_images(frame), fmt::format("frame_{:04d}", k), tag);
@@ -253,7 +257,8 @@ Action make_render(CLI::App& root) {
   cmd->add_flag("--sample-shading", a->sample_shading, "shade every MSAA sample");
   cmd->add_option("--tonemap", a->tonemap, "display curve of the PNG: linear or filmic (ACES fit)")
       ->capture_default_str();
-  cmd->add_flag("--no-indirect", a->no_indirect, "render without the probes' indirect light");
+  cmd->add_flag("--no-indirect", a->no_indirect,
+                "direct light only: the probes are neither traced nor drawn");
   cmd->add_option_function<std::uint32_t>(
       "--device", [a](std::uint32_t d) { a->device = d; }, "Vulkan device index (see ddish devices)");
   return [a]() { return run_render(*a); };

@@ -130,3 +130,17 @@ TEST_F(RenderScheduleCli, RunLogListsWhatIsLeftOutAndNoShadowPassRuns) {
 }
 
 }  // namespace
+
+// --no-indirect draws no probes, so it must not trace them either: its frame time is the
+// direct-light baseline of the results report.
+TEST_F(RenderScheduleCli, NoIndirectNeitherTracesNorUploadsProbes) {
+  const nlohmann::json fs_ = frames(" --no-indirect --frames 3", "direct.json");
+  ASSERT_EQ(fs_.size(), 3u);
+  for (const auto& f : fs_) {
+    EXPECT_EQ(f["probe_updates"], 0);
+    EXPECT_EQ(f["probe_rays"], 0);
+    EXPECT_EQ(f["probes_traced"], 0);
+    EXPECT_EQ(f["probes_uploaded"], 0);
+  }
+  EXPECT_NE(last_err_.find("probes are neither traced nor drawn"), std::string::npos) << last_err_;
+}
