@@ -39,6 +39,7 @@ FramePlan Scheduler::plan(const ProbeVolume& volume, std::span<const scene::View
   plan.mode = options_.mode;
   plan.budget_ms = budget_.limited() ? options_.budget.budget_ms : 0.0;
   plan.probe_ms_allowance = budget_.probe_ms_allowance();
+  plan.headroom_ms = budget_.headroom_ms();
   if (options_.mode == ScheduleMode::uniform) return plan_all(volume, std::move(plan));
 
   const ProbePriorities pr = compute_priorities(volume, views, options_.priority);

@@ -60,6 +60,7 @@ struct FramePlan {
   ScheduleMode mode = ScheduleMode::visibility;
   double budget_ms = 0.0;             // 0: none
   double probe_ms_allowance = 0.0;    // what the controller allowed the probe update (inf: none)
+  double headroom_ms = 0.0;           // the controller's jitter margin below the budget
   double predicted_probe_ms = 0.0;    // paths * the controller's ms per path
   std::uint64_t paths = 0;            // probes.size() * samples
   std::uint32_t active = 0;           // active probes in the volume

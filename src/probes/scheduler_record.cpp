@@ -31,6 +31,7 @@ nlohmann::json SchedulerFrameRecord::to_json() const {
       {"rays", rays},
       {"hysteresis", hysteresis},
       {"probe_ms_allowance", budgeted ? finite_or_null(probe_ms_allowance) : nlohmann::json()},
+      {"headroom_ms", budgeted ? nlohmann::json(headroom_ms) : nlohmann::json()},
       {"predicted_probe_ms", predicted_probe_ms},
       {"ms_per_path", ms_per_path},
       {"mrays_per_second", mrays_per_second},
@@ -60,6 +61,7 @@ SchedulerFrameRecord make_frame_record(std::int64_t frame, const FramePlan& plan
   r.rays = update.rays;
   r.hysteresis = plan.hysteresis;
   r.probe_ms_allowance = plan.probe_ms_allowance;
+  r.headroom_ms = plan.headroom_ms;
   r.predicted_probe_ms = plan.predicted_probe_ms;
   r.ms_per_path = budget.ms_per_path();
   r.mrays_per_second = budget.mrays_per_second();

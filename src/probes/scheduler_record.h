@@ -9,9 +9,11 @@
 //               "skipped": 650, "overdue": 0, "paced": 30, "samples_per_probe": 256,
 //               "newly_inactive": 0},
 //    "paths": 64000, "rays": 180000, "hysteresis": 0.95,
-//    "probe_ms_allowance": 12.5, "predicted_probe_ms": 12.3, "ms_per_path": 1.9e-4,
+//    "probe_ms_allowance": 12.5, "headroom_ms": 2.1, "predicted_probe_ms": 12.3, "ms_per_path": 1.9e-4,
 //    "mrays_per_second": 14.8, "over_allowance": false}
-// budget_ms and within_budget are null without a budget; probe_ms_allowance is null then too.
+// budget_ms and within_budget are null without a budget; probe_ms_allowance and headroom_ms
+// (the jitter margin the controller kept below the budget when it planned the frame,
+// probes/budget.h) are null then too.
 #pragma once
 
 #include <cstdint>
@@ -52,6 +54,7 @@ struct SchedulerFrameRecord {
   float hysteresis = 0.0f;
 
   double probe_ms_allowance = 0.0;  // inf: none
+  double headroom_ms = 0.0;         // the controller's jitter margin at planning time
   double predicted_probe_ms = 0.0;
   double ms_per_path = 0.0;         // the controller's estimate after this frame
   double mrays_per_second = 0.0;    // smoothed

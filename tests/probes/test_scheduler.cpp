@@ -249,6 +249,7 @@ TEST(Scheduler, FrameRecordJson) {
   EXPECT_DOUBLE_EQ(j["budget_ms"].get<double>(), 10.0);
   EXPECT_DOUBLE_EQ(j["frame_ms"].get<double>(), 9.0);
   EXPECT_EQ(j["within_budget"], true);
+  EXPECT_DOUBLE_EQ(j["headroom_ms"].get<double>(), 0.0);  // no jitter measured before frame 1
   EXPECT_DOUBLE_EQ(j["stages_ms"]["raster"].get<double>(), 5.0);
   EXPECT_EQ(j["probes"]["traced"], plan.probes.size());
   EXPECT_EQ(j["probes"]["skipped"], 256u - plan.probes.size());
@@ -270,6 +271,7 @@ TEST(Scheduler, FrameRecordJson) {
   EXPECT_TRUE(ju["budget_ms"].is_null());
   EXPECT_TRUE(ju["within_budget"].is_null());
   EXPECT_TRUE(ju["probe_ms_allowance"].is_null());
+  EXPECT_TRUE(ju["headroom_ms"].is_null());
   EXPECT_NO_THROW((void)ju.dump());
 }
 
