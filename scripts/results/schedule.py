@@ -129,6 +129,8 @@ def section_schedule(runner, cfg, scenes, cache, results_dir, report):
         within_steady = sum(1 for m in ms[1:] if m <= budget)
         fig = compare_many(runner, {"end": (only_exr(out), ref)}, "sched_path")["end"]
         frac = within / len(frames)
+        headroom = [f["scheduler"].get("headroom_ms") for f in frames[1:] if f.get("scheduler")]
+        headroom = [h for h in headroom if h is not None]
         write_csv(results_dir / "schedule_path.csv", ["frame", "frame_ms", "budget_ms", "probe_rays",
                                                       "probes_traced"],
                   [{"frame": f["frame"], "frame_ms": m, "budget_ms": budget, "probe_rays": f.get("probe_rays"),
@@ -141,7 +143,9 @@ def section_schedule(runner, cfg, scenes, cache, results_dir, report):
             f"budget (frame time without file output): {within} of {len(frames)} ({fmt(100 * frac)} %; "
             f"{within_steady} of {len(frames) - 1} without the first frame, which builds the pipelines); "
             f"median frame {fmt(median(ms[1:]))} ms, 95th percentile "
-            f"{fmt(sorted(ms[1:])[int(0.95 * (len(ms) - 2))] if len(ms) > 2 else float('nan'))} ms. "
+            f"{fmt(sorted(ms[1:])[int(0.95 * (len(ms) - 2))] if len(ms) > 2 else float('nan'))} ms; "
+            f"the controller's jitter headroom (it aims at the budget less 1.3 sigmas of its recent "
+            f"prediction misses, src/probes/budget.h) had a median of {fmt(median(headroom) if headroom else float('nan'))} ms. "
             f"End error against a {meta.get('spp')}-spp reference of the rest pose: PSNR "
             f"{fmt(fig['psnr'], 2)} dB, SSIM {fmt(fig['ssim'], 3)}, RMSE {fmt(fig['rmse'], 4)}. "
             "CSV: [results/schedule_path.csv](results/schedule_path.csv).\n")
