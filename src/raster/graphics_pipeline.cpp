@@ -50,10 +50,14 @@ Pipeline make_graphics_pipeline(const gpu::Device& device, const GraphicsPipelin
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;
   raster.depthBiasEnable = desc.depth_bias ? VK_TRUE : VK_FALSE;
-  // Shadow maps: a slope-scaled bias against acne on surfaces at grazing light; the normal
-  // offset in forward.frag does the rest, so the constant part stays small.
+  // Shadow maps: a small constant bias; the receiver's normal offset in forward_main.glsl
+  // (larger at grazing light) removes acne. No slope-scaled bias: it pushes a caster seen at
+  // grazing light back by 1.5x its depth slope (~5x a texel at 12 degrees), so light leaked
+  // where such a caster meets the surface it shadows (the Breakfast room's back wall, lit by
+  // the sun from behind, let light onto the side wall and the picture along their contact
+  // lines, issue 8; tests/raster/raster_bias_test.cpp).
   raster.depthBiasConstantFactor = desc.depth_bias ? 1.0f : 0.0f;
-  raster.depthBiasSlopeFactor = desc.depth_bias ? 1.5f : 0.0f;
+  raster.depthBiasSlopeFactor = 0.0f;
   VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
   multisample.rasterizationSamples = desc.samples;
   if (desc.sample_shading) {

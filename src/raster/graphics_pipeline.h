@@ -31,7 +31,7 @@ struct GraphicsPipelineDesc {
   VkFormat depth_format = VK_FORMAT_UNDEFINED;
   VkSampleCountFlagBits samples = VK_SAMPLE_COUNT_1_BIT;
   bool sample_shading = false;  // shade every sample (needs the sampleRateShading feature)
-  bool depth_bias = false;      // slope-scaled bias for shadow maps
+  bool depth_bias = false;      // constant depth bias for shadow maps
   std::uint32_t view_mask = 0;  // multiview: one bit per view rendered by one draw
 };
 
