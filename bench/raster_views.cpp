@@ -5,7 +5,14 @@
 // left empty: the per-view cost does not depend on what they hold.
 //
 //   raster_views [SCENE] [--views 1,6,12,48] [--size 420x560] [--frames 3] [--msaa 0] [--chunk 0]
-//                [--method per-view|multiview|layered] [--only-view K] [--per-chunk]
+//                [--method per-view|multiview|layered] [--cull on|off|both] [--only-view K]
+//                [--per-chunk] [--shading full|trivial|both] [--anisotropy N]
+//
+// --shading trivial draws the same triangles with the same vertex shader, depth test, MSAA,
+// passes and target but a constant-colour fragment shader (raster/shading.h): the vertex +
+// raster + fill floor of the machine, which the full shading's time is compared against; both
+// times each configuration with either shader (the CSV's shading column). --anisotropy is
+// RendererOptions::anisotropy (0 automatic: off on lavapipe; 8 reproduces the old default).
 //
 // --chunk K renders a frame of N views as render() calls of at most K views each (summed): on a
 // loaded 2-core machine a 48-view lavapipe frame can outlast the 60 s fence wait of
@@ -14,7 +21,7 @@
 // --only-view K renders only view K of the N-view rig: together they find a view that costs far
 // more than its neighbours (how the Sponza 48-view cliff was traced to anisotropic filtering).
 //
-// Prints one CSV row per method x culling x N (configurations interleaved frame by frame): median over the frames of the whole frame
+// Prints one CSV row per method x culling x shading x N (configurations interleaved frame by frame): median over the frames of the whole frame
 // (record + GPU + readback), the forward pass's GPU time (timestamps), the CPU recording time,
 // and the triangles and draw calls the culling left.
 #include <algorithm>
@@ -34,7 +41,9 @@
 #include "gpu/device.h"
 #include "probes/probe_grid.h"
 #include "probes/probe_volume.h"
+#include "raster/anisotropy.h"
 #include "raster/renderer.h"
+#include "raster/shading.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
 
@@ -79,6 +88,9 @@ int main(int argc, char** argv) try {
   int chunk = 0;
   bool per_chunk = false;
   std::string only_method;
+  std::string cull_choice = "both";
+  std::string shading_choice = "full";
+  int anisotropy = 0;
   int only_view = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -94,23 +106,35 @@ int main(int argc, char** argv) try {
     else if (a == "--method") only_method = next();
     else if (a == "--only-view") only_view = std::stoi(next());
     else if (a == "--msaa") msaa = static_cast<std::uint32_t>(std::stoi(next()));
+    else if (a == "--cull") cull_choice = next();
+    else if (a == "--shading") shading_choice = next();
+    else if (a == "--anisotropy") anisotropy = std::stoi(next());
     else path = a;
   }
   if (!only_method.empty() && !raster::parse_view_method(only_method))
     throw std::invalid_argument("--method must be per-view, multiview or layered, not " + only_method);
+  if (cull_choice != "on" && cull_choice != "off" && cull_choice != "both")
+    throw std::invalid_argument("--cull must be on, off or both, not " + cull_choice);
+  std::vector<raster::Shading> shadings;
+  if (shading_choice == "both") shadings = {raster::Shading::full, raster::Shading::trivial};
+  else if (auto sh = raster::parse_shading(shading_choice)) shadings = {*sh};
+  else throw std::invalid_argument("--shading must be full, trivial or both, not " + shading_choice);
+  raster::check_anisotropy(anisotropy);
   const scene::Scene s = scene::load_scene(path);
   gpu::Context context({.application_name = "raster_views"});
   gpu::Device& device = context.device();
   const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {4, 4, 4}), 2);
-  std::printf("# %s, %zu mesh triangles (before instancing), %dx%d, device %s, %d frames (median)\n", path.c_str(),
+  std::printf("# %s, %zu mesh triangles (before instancing), %dx%d, device %s, %d frames (median), "
+              "anisotropy option %d\n", path.c_str(),
               [&] { std::size_t t = 0; for (const auto& m : s.meshes) t += m.triangle_count(); return t; }(),
-              width, height, device.info().name.c_str(), frames);
-  std::printf("method,cull,views,passes,frame_ms,ms_per_view,forward_gpu_ms,record_ms,triangles,draws\n");
+              width, height, device.info().name.c_str(), frames, anisotropy);
+  std::printf("method,cull,shading,views,passes,frame_ms,ms_per_view,forward_gpu_ms,record_ms,triangles,draws\n");
   // Every configuration renders each frame in turn (paired runs): on a shared machine the load
   // changes from minute to minute, and interleaving spreads it evenly over the configurations.
   struct Config {
     raster::ViewMethod method;
     bool cull;
+    raster::Shading shading;
     std::unique_ptr<raster::Renderer> renderer;
     std::vector<double> frame, gpu, record;
     raster::FrameStats last;
@@ -118,14 +142,19 @@ int main(int argc, char** argv) try {
   std::vector<Config> configs;
   for (raster::ViewMethod method :
        {raster::ViewMethod::per_view, raster::ViewMethod::multiview, raster::ViewMethod::layered})
-    for (bool cull : {false, true}) {
-      if (!only_method.empty() && only_method != raster::to_string(method)) continue;
-      raster::RendererOptions options;
-      options.msaa = msaa;
-      options.view_method = method;
-      options.cull = cull;
-      configs.push_back({method, cull, std::make_unique<raster::Renderer>(device, s, volume, options), {}, {}, {}, {}});
-    }
+    for (bool cull : {false, true})
+      for (raster::Shading shading : shadings) {
+        if (!only_method.empty() && only_method != raster::to_string(method)) continue;
+        if (cull_choice != "both" && cull != (cull_choice == "on")) continue;
+        raster::RendererOptions options;
+        options.msaa = msaa;
+        options.view_method = method;
+        options.cull = cull;
+        options.anisotropy = anisotropy;
+        options.shading = shading;
+        configs.push_back({method, cull, shading,
+                           std::make_unique<raster::Renderer>(device, s, volume, options), {}, {}, {}, {}});
+      }
   for (int n : counts) {
     std::vector<scene::View> all_views = rig(s, n, width, height);
     if (only_view >= 0) all_views = {all_views.at(static_cast<std::size_t>(only_view))};
@@ -165,8 +194,9 @@ int main(int argc, char** argv) try {
       }
     for (const Config& c : configs) {
       const double ms = median(c.frame);
-      std::printf("%s,%s,%d,%u,%.1f,%.1f,%.1f,%.2f,%llu,%llu\n",
-                  std::string(raster::to_string(c.method)).c_str(), c.cull ? "on" : "off", n,
+      std::printf("%s,%s,%s,%d,%u,%.2f,%.2f,%.2f,%.2f,%llu,%llu\n",
+                  std::string(raster::to_string(c.method)).c_str(), c.cull ? "on" : "off",
+                  std::string(raster::to_string(c.shading)).c_str(), n,
                   c.last.forward_passes, ms, ms / n, median(c.gpu), median(c.record),
                   static_cast<unsigned long long>(c.last.cull.triangles_drawn),
                   static_cast<unsigned long long>(c.last.cull.draws));

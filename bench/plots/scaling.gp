@@ -8,4 +8,4 @@ plot datafile using "views":"frame_ms" with linespoints lw 2 title "frame (one p
      datafile using "views":"naive_ms" with linespoints dt 2 title "naive: a probe update per view", \
      datafile using "views":"raster_ms" with linespoints title "raster, all views", \
      datafile using "views":"probe_update_ms" with linespoints title "probe update", \
-     datafile using "views":"trivial_floor_ms" with linespoints dt 3 title "trivial-shader floor"
+     datafile using "views":"trivial_floor_ms" with linespoints dt 3 title "trivial-shader floor (N views, constant colour)"

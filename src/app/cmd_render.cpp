@@ -4,7 +4,7 @@
 //                    [--frames N] [--every] [--fps F] [--time T] [--out DIR] [--timings FILE]
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
 //                    [--probe-samples N] [--hysteresis A] [--bounces N] [--msaa 1|4]
-//                    [--sample-shading] [--tonemap linear|filmic] [--no-indirect]
+//                    [--sample-shading] [--anisotropy N] [--tonemap linear|filmic] [--no-indirect]
 //                    [--schedule uniform|visibility] [--budget-ms MS] [--max-age N]
 //                    [--blend per-update|per-sample] [--device N] [--seed N]
 //
@@ -46,6 +46,7 @@
 #include "probes/probe_volume.h"
 #include "probes/scheduler.h"
 #include "probes/tracer_source.h"
+#include "raster/anisotropy.h"
 #include "raster/renderer.h"
 #include "raster/tonemap.h"
 #include "scene/features.h"
@@ -74,6 +75,7 @@ struct RenderArgs {
   std::string timings;
   std::uint32_t msaa = 0;
   bool sample_shading = false;
+  int anisotropy = raster::kAutomaticAnisotropy;
   std::string tonemap = "filmic";
   bool no_indirect = false;
   std::optional<std::uint32_t> device;
@@ -88,6 +90,11 @@ void check(const RenderArgs& a) {
   if (!(a.fps > 0.0)) throw std::invalid_argument("--fps must be positive");
   if (a.msaa != 0 && a.msaa != 1 && a.msaa != 2 && a.msaa != 4 && a.msaa != 8 && a.msaa != 16)
     throw std::invalid_argument(fmt::format("--msaa must be 1, 2, 4, 8 or 16, got {}", a.msaa));
+  try {
+    raster::check_anisotropy(a.anisotropy);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("--") + e.what());
+  }
 }
 
 // The frame's progress line on stderr.
@@ -149,6 +156,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   raster::RendererOptions ro;
   ro.msaa = a.msaa;
   ro.sample_shading = a.sample_shading;
+  ro.anisotropy = a.anisotropy;
   ro.tone_curve = raster::parse_tone_curve(a.tonemap);
   ro.probes = !a.no_indirect;
   raster::Renderer renderer(gpu.device(), s, volume, ro);
@@ -255,6 +263,10 @@ Action make_render(CLI::App& root) {
   cmd->add_option("--timings", a->timings, "write per-frame stage milliseconds as JSON here");
   cmd->add_option("--msaa", a->msaa, "samples per pixel (default: 4 where supported, else 1)");
   cmd->add_flag("--sample-shading", a->sample_shading, "shade every MSAA sample");
+  cmd->add_option("--anisotropy", a->anisotropy,
+                  "texture anisotropic filtering: maximum 2..16 (clamped to the device), 1 off, "
+                  "0 automatic: 8 on GPUs, off on CPU devices (lavapipe, where it can stall a view)")
+      ->capture_default_str();
   cmd->add_option("--tonemap", a->tonemap, "display curve of the PNG: linear or filmic (ACES fit)")
       ->capture_default_str();
   cmd->add_flag("--no-indirect", a->no_indirect,

@@ -28,6 +28,13 @@ const gpu::Device& checked(const gpu::Device& device, const ForwardPassDesc& des
   return device;
 }
 
+// The trivial shader declares none of the variant's specialization constants; Vulkan ignores
+// map entries a shader does not use, so the pipeline is otherwise built exactly as for full.
+std::string fragment_shader(const ForwardPassDesc& desc) {
+  if (desc.shading == Shading::trivial) return "forward_trivial.frag";
+  return "forward_sh" + std::to_string(desc.sh_order) + ".frag";
+}
+
 // Instances with a mesh, by material, so that each material's set is bound once per pass.
 std::vector<std::size_t> material_order(const scene::Scene& scene, const GpuMeshes& meshes) {
   std::vector<std::size_t> order;
@@ -49,7 +56,7 @@ ForwardPass::ForwardPass(const gpu::Device& device, const ForwardPassDesc& desc)
     : device_(checked(device, desc)),
       desc_(desc),
       vertex_(gpu::ShaderModule::load(device, "forward.vert")),
-      fragment_(gpu::ShaderModule::load(device, "forward_sh" + std::to_string(desc.sh_order) + ".frag")) {
+      fragment_(gpu::ShaderModule::load(device, fragment_shader(desc))) {
   layout_ = make_pipeline_layout(device, desc.set_layouts, sizeof(DrawConstants));
   if (device.features().multiview)
     max_multiview_ = std::max(1u, device.info().max_multiview_view_count);

@@ -20,6 +20,7 @@
 #include "raster/draw_list.h"
 #include "raster/graphics_pipeline.h"
 #include "raster/shader_variant.h"
+#include "raster/shading.h"
 #include "raster/view_method.h"
 
 namespace ddish::gpu {
@@ -45,6 +46,7 @@ struct ForwardPassDesc {
   std::uint32_t samples = 1;
   bool sample_shading = false;  // needs DeviceFeatures::sample_rate_shading
   ShaderVariant variant;
+  Shading shading = Shading::full;  // trivial: forward_trivial.frag instead of forward_sh<order>
 };
 
 // What one frame's forward pass draws: the views (their matrices also live in the frame set,

@@ -8,6 +8,7 @@
 #include "gpu/commands.h"
 #include "gpu/device.h"
 #include "gpu/error.h"
+#include "raster/anisotropy.h"
 #include "raster/gpu_types.h"
 #include "raster/probe_descriptor_set.h"
 #include "scene/scene.h"
@@ -110,8 +111,11 @@ const gpu::Image& MaterialTextures::image_for(const gpu::Device& device, gpu::Co
 }
 
 MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner& runner,
-                                   const scene::Scene& scene, bool textures)
-    : device_(device.handle()) {
+                                   const scene::Scene& scene, bool textures, int anisotropy)
+    : device_(device.handle()),
+      max_anisotropy_(resolve_anisotropy(anisotropy, device.info().type,
+                                         device.features().sampler_anisotropy,
+                                         device.limits().maxSamplerAnisotropy)) {
   scene::Texture white_texel{"white", 1, 1, {255, 255, 255, 255}};
   white_ = upload_texture(device, runner, white_texel, VK_FORMAT_R8G8B8A8_UNORM);
 
@@ -121,9 +125,11 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
   sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
   sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
   sampler.maxLod = VK_LOD_CLAMP_NONE;
-  if (device.features().sampler_anisotropy) {
+  // Off by default on CPU devices, where lavapipe's anisotropic filter can stall a view for
+  // tens of seconds (raster/anisotropy.h).
+  if (max_anisotropy_ > 1.0f) {
     sampler.anisotropyEnable = VK_TRUE;
-    sampler.maxAnisotropy = std::min(8.0f, device.limits().maxSamplerAnisotropy);
+    sampler.maxAnisotropy = max_anisotropy_;
   }
   VkSampler s = VK_NULL_HANDLE;
   gpu::check(vkCreateSampler(device_, &sampler, nullptr, &s), "vkCreateSampler");

@@ -32,13 +32,17 @@ class MaterialTextures {
  public:
   // textures = false: no texture is uploaded or flagged (SceneFeatures had none, or the plan
   // leaves sampling out); every slot reads the white texture and the shader skips sampling.
+  // anisotropy: RendererOptions::anisotropy (raster/anisotropy.h; 0 automatic, 1 off); throws
+  // std::invalid_argument for a value outside 0..16.
   MaterialTextures(const gpu::Device& device, gpu::CommandRunner& runner, const scene::Scene& scene,
-                   bool textures);
+                   bool textures, int anisotropy = 0);
 
   VkDescriptorSetLayout layout() const { return layout_.get(); }
   // The set of scene material `material`; -1 is glTF's default material.
   VkDescriptorSet set(int material) const;
   std::size_t texture_images() const { return images_.size(); }
+  // The sampler's maxAnisotropy as resolved for the device; 1: anisotropic filtering off.
+  float max_anisotropy() const { return max_anisotropy_; }
 
   // A texture uploaded to an RGBA8 image of `format` with all mips (public for tests). Throws
   // GpuError naming the format feature the device lacks for mip generation.
@@ -50,6 +54,7 @@ class MaterialTextures {
                               const scene::Scene& scene, int texture, bool srgb);
 
   VkDevice device_ = VK_NULL_HANDLE;
+  float max_anisotropy_ = 1.0f;
   gpu::Image white_;
   std::map<std::pair<int, bool>, gpu::Image> images_;  // (texture, sRGB) -> image
   gpu::DeviceHandle<VkSampler, vkDestroySampler> sampler_;

@@ -58,6 +58,7 @@ ForwardPassDesc forward_desc(const RendererOptions& o, const scene::RenderPlan& 
   d.sample_shading = o.sample_shading;
   d.variant = variant_for(plan);
   d.variant.probes = o.probes;
+  d.shading = o.shading;
   return d;
 }
 
@@ -73,7 +74,7 @@ Renderer::Renderer(gpu::Device& device, const scene::Scene& scene, const probes:
       samples_(choose_samples(device, options.msaa)),
       runner_(device),
       meshes_(device, runner_, scene),
-      materials_(device, runner_, scene, plan_.texture_sampling),
+      materials_(device, runner_, scene, plan_.texture_sampling, options.anisotropy),
       frame_(device, static_cast<std::uint32_t>(scene.lights.size()),
              shadow_capacity(scene, shadow_settings_)),
       shadows_(device, runner_, shadow_settings_.map_size, shadow_capacity(scene, shadow_settings_),

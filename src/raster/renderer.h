@@ -28,6 +28,7 @@
 #include "raster/probe_textures.h"
 #include "raster/render_target.h"
 #include "raster/shadow_layout.h"
+#include "raster/shading.h"
 #include "raster/shadow_maps.h"
 #include "raster/tonemap.h"
 #include "raster/view_method.h"
@@ -63,6 +64,12 @@ struct RendererOptions {
   // Per-view frustum and backface-cone culling of mesh clusters: never changes an image, costs
   // under 2 ms of CPU for 48 views of a 262k-triangle room.
   bool cull = true;
+  // Material sampler's maximum anisotropy: 0 automatic (8 on GPUs, off on CPU devices such as
+  // lavapipe, where it can stall a view for seconds: raster/anisotropy.h), 1 off, 2..16 asked
+  // for (clamped to the device's limit). Outside 0..16: std::invalid_argument.
+  int anisotropy = 0;
+  // full: the renderer's shading; trivial: a constant colour, the fill-rate floor (raster/shading.h).
+  Shading shading = Shading::full;
 };
 
 struct ViewImage {
@@ -112,6 +119,8 @@ class Renderer {
   const scene::RenderPlan& plan() const { return plan_; }
   const ShaderVariant& variant() const { return forward_->desc().variant; }
   std::uint32_t samples() const { return samples_; }
+  // The material sampler's maxAnisotropy on this device (RendererOptions::anisotropy); 1: off.
+  float anisotropy() const { return materials_.max_anisotropy(); }
   int sh_order() const { return forward_->desc().sh_order; }
 
  private:
