@@ -176,12 +176,12 @@ class Gltf:
         lights["lights"].append(light)
         return len(lights["lights"]) - 1
 
-    def animate_translation(self, name, node, times, values):
+    def animate_translation(self, name, node, times, values, interpolation="LINEAR"):
         t = self._times(times)
         v = self._accessor(values, "VEC3")
         self.doc.setdefault("animations", []).append({
             "name": name,
-            "samplers": [{"input": t, "output": v, "interpolation": "LINEAR"}],
+            "samplers": [{"input": t, "output": v, "interpolation": interpolation}],
             "channels": [{"sampler": 0, "target": {"node": node, "path": "translation"}}]})
 
     def write(self, out_dir, sidecar):
@@ -286,6 +286,42 @@ def cornell_animated(out_dir):
                       "camera": "Camera"})
 
 
+# cornell_light: where the point light is (STEP keys, so it jumps), in seconds. At whole-number
+# frame rates every event falls on a whole frame (at 30 fps 4 s = frame 120, ...); the 4 s run-in
+# holds the 1 / (1 - hysteresis) updates of the probes' warm-up (100 at 0.99: 25 fps or more), so
+# results section 3 measures each event from a running average at full hysteresis.
+LIGHT_A = [-0.5, 1.6, 0.4]       # near the red wall, front
+LIGHT_B = [0.5, 1.6, -0.5]       # near the green wall, back
+LIGHT_HOUSING = [0.0, 1.0, -1.5]  # inside a closed box behind the back wall: switched off
+LIGHT_TIMELINE = [(0.0, LIGHT_A), (4.0, LIGHT_B), (14.0, LIGHT_HOUSING), (24.0, LIGHT_B)]
+
+
+def cornell_light(out_dir):
+    """cornell_box (its emissive ceiling quad stays on as a fill light) plus a point light that
+    jumps from A to B at 4 s, is switched off at 14 s and on again at B at 24 s. Core glTF cannot
+    animate a light's intensity, so "off" is a move into a closed housing outside the room: every
+    ray from the light meets the housing, in the path tracer and in the cube shadow map alike."""
+    g = Gltf("cornell_light")
+    white = cornell_room(g, light_hole=True)
+    block(g, "ShortBlock", white, (0.6, 0.6, 0.6), [0.33, 0.0, 0.28], -17.0)
+    block(g, "TallBlock", white, (0.6, 1.2, 0.6), [-0.33, 0.0, -0.3], 17.0)
+    housing = Part(g.material("Housing", [0.2, 0.2, 0.2, 1.0]))
+    c, r = LIGHT_HOUSING, 0.2
+    housing.box([c[0] - r, c[1] - r, c[2] - r], [c[0] + r, c[1] + r, c[2] + r], outward=True)
+    g.node({"name": "LampHousing", "mesh": g.mesh("LampHousing", [housing])})
+    lamp = g.light({"name": "Lamp", "type": "point", "color": [1.0, 0.9, 0.75], "intensity": 6.0})
+    node = g.node({"name": "Lamp", "translation": LIGHT_A,
+                   "extensions": {"KHR_lights_punctual": {"light": lamp}}})
+    g.animate_translation("MoveAndSwitchLamp", node, [t for t, _ in LIGHT_TIMELINE],
+                          [p for _, p in LIGHT_TIMELINE], interpolation="STEP")
+    g.camera("Camera", *CORNELL_CAMERA)
+    # The probe grid covers the room only (the housing outside it would stretch an automatic grid):
+    # the same 8 x 8 x 8 probes as cornell_box.
+    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]},
+                      "probe_grid": {"counts": [8, 8, 8], "bounds": {"min": [-1, 0, -1], "max": [1, 2, 1]}},
+                      "camera": "Camera"})
+
+
 def two_rooms(out_dir):
     """Room A (x in [-3, 0], lit by a point light) and room B (x in [0.2, 3.2], unlit) on either
     side of a 0.2 m wall with a 1 m x 2 m door; 2.5 m high, z in [-1.5, 1.5]."""
@@ -334,7 +370,7 @@ def main():
     here = os.path.dirname(os.path.abspath(__file__))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
-    for make in (cornell_box, cornell_spot, two_rooms, cornell_animated):
+    for make in (cornell_box, cornell_spot, two_rooms, cornell_animated, cornell_light):
         make(out_dir)
 
 

@@ -1,12 +1,25 @@
 """Settings of the results run: the full variant and --quick (the test suite's smoke test)."""
 
+# Section 3's events in scenes/cornell_light.gltf (scripts/make_scenes.py LIGHT_TIMELINE): time in
+# seconds, id, what happens, and the light's state after it (the reference and converged run are
+# made once per state).
+DYNAMIC_EVENTS = [
+    (4.0, "jump", "the light jumps to B (near the green wall, back)", "B"),
+    (14.0, "off", "it is switched off (moved into the housing)", "off"),
+    (24.0, "on", "it is switched on again at B", "B"),
+]
+
 
 FULL = {
     "mode": "full",
     "scaling_scenes": ["sponza", "breakfast"],
     "scaling_views": [1, 2, 4, 8, 16, 32, 48],
-    "scaling_tile": (210, 280),
-    "scaling_msaa": 1,
+    # The Looking Glass Portrait tile at the renderer's default MSAA (4 on lavapipe). Measured on
+    # the 2-core box under load (4-5), anisotropy off: 1.3-1.8 s a Sponza view, 0.25-0.8 s a
+    # Breakfast-room view, so the section (111 views x 3 frames per scene, plus the floor) takes
+    # ~9-15 min; MSAA 1 would be ~3x cheaper per view.
+    "scaling_tile": (420, 560),
+    "scaling_msaa": 4,
     "scaling_frames": 3,
     "raster_floor_frames": 2,
     "trace_floor": {"samples": 256, "updates": 3, "repeat": 3},
@@ -23,10 +36,16 @@ FULL = {
         "hysteresis": [0.9, 0.95, 0.99],
     },
     "pt_spp": [1, 2, 4, 8, 16],
+    # scenes/cornell_light.gltf, one run per hysteresis and blend from t = 0 to the last event +
+    # segment_s. fps per hysteresis: enough frames (one probe update each) between events for the
+    # slowest decay, 10 s = 100 frames at 0.9 and 0.95 (theory: 22, 45 frames), 300 at 0.99 (229).
     "dynamic": {
         "size": (96, 96), "ref_spp": 1024, "samples": 64, "hysteresis": [0.9, 0.95, 0.99],
-        "start_time": 2.0, "fps": 30.0, "moving_frames": 60, "static_frames": 180,
-        "motion_times": [2.5, 3.0, 3.5],
+        "blends": ["per-update", "per-sample"], "fps": {0.9: 10.0, 0.95: 10.0, 0.99: 30.0},
+        "segment_s": 10.0, "events": DYNAMIC_EVENTS, "still_frames": 300, "still_hysteresis": 0.999,
+        # Both blend rules again under a frame budget (visibility schedule), where they differ;
+        # 30 fps (300 frames per event): with fewer paths per frame the decay is slower.
+        "budget_runs": [{"hysteresis": 0.95, "budget_ms": 30.0, "fps": 30.0}],
     },
     "schedule": {
         "sponza_camera": "CameraAlcove", "size": (160, 120), "ref_spp": 256, "frames": 16,
@@ -54,8 +73,8 @@ QUICK = {
     "pt_spp": [1, 4],
     "dynamic": {
         "size": (32, 32), "ref_spp": 32, "samples": 16, "hysteresis": [0.9],
-        "start_time": 3.8, "fps": 30.0, "moving_frames": 6, "static_frames": 12,
-        "motion_times": [],
+        "blends": ["per-update", "per-sample"], "fps": {0.9: 1.0}, "segment_s": 10.0,
+        "events": DYNAMIC_EVENTS, "still_frames": 30, "still_hysteresis": 0.999,
     },
     "schedule": None,
 }

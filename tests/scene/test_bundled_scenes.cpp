@@ -163,3 +163,40 @@ TEST(BundledScenes, CornellAnimated) {
   EXPECT_EQ(s.pose(4.0).size(), 1u);
   EXPECT_NEAR(s.instances[std::size_t(moved[0])].transform[3].x, 0.33f, 1e-6f);
 }
+
+// The dynamic-light scene: a point light on STEP keys that jumps from A to B at 4 s, is switched
+// off at 14 s by a move into a closed housing outside the room, and is on again at B at 24 s.
+// No instance moves, so pose() reports nothing moved while the light does; the probe grid stays
+// on the room although the housing widens the scene's bounds.
+TEST(BundledScenes, CornellLight) {
+  scene::Scene s = bundled("cornell_light.gltf");
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].type, scene::LightType::Point);
+  EXPECT_DOUBLE_EQ(s.animation_duration(), 24.0);
+  ASSERT_EQ(s.animations.size(), 1u);
+  ASSERT_EQ(s.animations[0].channels.size(), 1u);
+  EXPECT_EQ(s.animations[0].channels[0].interpolation, scene::Interpolation::Step);
+  scene::RenderPlan plan = scene::make_plan(scene::analyze(s));
+  EXPECT_TRUE(plan.animation);
+  EXPECT_TRUE(plan.point_shadows);
+  EXPECT_TRUE(plan.emission);  // the ceiling quad stays on as a fill light
+  ASSERT_TRUE(s.sidecar.probe_bounds.has_value());
+  EXPECT_EQ(s.sidecar.probe_bounds->min, glm::vec3(-1.0f, 0.0f, -1.0f));
+  EXPECT_EQ(s.sidecar.probe_bounds->max, glm::vec3(1.0f, 2.0f, 1.0f));
+  const glm::vec3 a(-0.5f, 1.6f, 0.4f), b(0.5f, 1.6f, -0.5f), housing(0.0f, 1.0f, -1.5f);
+  // Frame times at 30 fps as the frame loop computes them (t = k / fps), either side of each key.
+  const struct {
+    int frame;
+    glm::vec3 at;
+  } timeline[] = {{0, a}, {119, a}, {120, b}, {419, b}, {420, housing}, {719, housing}, {720, b}, {1019, b}};
+  for (const auto& k : timeline) {
+    EXPECT_TRUE(s.pose(double(k.frame) / 30.0).empty()) << "frame " << k.frame;
+    EXPECT_NEAR(glm::length(s.lights[0].position - k.at), 0.0f, 1e-6f) << "frame " << k.frame;
+  }
+  // Switched on: the light is in the open room; switched off: every direction meets the housing
+  // from inside (back faces), so no light reaches the room.
+  expect_in_room(s, a, true);
+  expect_in_room(s, b, true);
+  expect_inside_solid(s, housing);
+  expect_inside_solid(s, housing + glm::vec3(0.15f, -0.15f, 0.1f));
+}
