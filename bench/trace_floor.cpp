@@ -172,7 +172,7 @@ std::vector<trace::Ray> update_rays(const probes::ProbeVolume& volume, std::uint
 
 int main(int argc, char** argv) try {
   std::string path, grid;
-  int samples = 256, bounces = 4, updates = 4, repeat = 3;
+  int samples = 256, bounces = 15, updates = 4, repeat = 3;  // bounces: ddish render's default
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {

@@ -40,7 +40,9 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
         "(pose + probe update + upload + raster, without file output) over the steady frames. "
         f"Sweeps change one setting at a time from the paper's settings: L{defaults['sh_order']} SH, "
         f"{defaults['probe_samples']} paths per probe per update, the scene's sidecar grid, hysteresis "
-        f"{defaults['hysteresis']}. *grid half* halves the sidecar's probe counts on every axis (twice the spacing). "
+        f"{defaults['hysteresis']}, {defaults['bounces']} bounces per probe path (ddish's default: one fewer than the "
+        "reference's 16, since the rasterized surface is the first scattering; *bounces_4* shows what shorter "
+        "paths cost in accuracy). *grid half* halves the sidecar's probe counts on every axis (twice the spacing). "
         "Baselines in the same run: path tracing (`ddish reference --spp k`, seed 7 so its noise is "
         "independent of the reference's; its time is the reference renderer's own render seconds) at "
         "k spp and at equal time (`--time-limit` = the paper-settings frame time), and direct light only "
@@ -78,7 +80,8 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
         for c in configs:
             s = c["settings"]
             args = ["--width", W, "--height", H, "--frames", frames, "--probe-samples",
-                    s["probe_samples"], "--sh-order", s["sh_order"], "--hysteresis", s["hysteresis"]]
+                    s["probe_samples"], "--sh-order", s["sh_order"], "--hysteresis", s["hysteresis"],
+                    "--bounces", s["bounces"]]
             if s["grid"] == "half":
                 args += ["--grid", half]
             try:
@@ -90,6 +93,7 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
                              "value": c["value"], "samples": s["probe_samples"],
                              "grid": ",".join(map(str, counts)) if s["grid"] == "sidecar" else half,
                              "sh_order": s["sh_order"], "hysteresis": s["hysteresis"],
+                             "bounces": s["bounces"],
                              "ms_per_frame": st["frame_ms"], "probe_ms": st["probe_update_ms"],
                              "raster_ms": st["raster_ms"], "spp": None})
             except StepFailed as e:
@@ -137,7 +141,7 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
                 r.update(psnr=f["psnr"], ssim=f["ssim"], rmse=f["rmse"], relmse=f["relmse"])
         pareto(rows)
         header = ["scene", "method", "config", "param", "value", "samples", "grid", "sh_order",
-                  "hysteresis", "spp", "ms_per_frame", "probe_ms", "raster_ms", "psnr", "ssim", "rmse",
+                  "hysteresis", "bounces", "spp", "ms_per_frame", "probe_ms", "raster_ms", "psnr", "ssim", "rmse",
                   "relmse", "pareto"]
         csv_path = results_dir / f"error_{key}.csv"
         write_csv(csv_path, header, rows)
@@ -149,7 +153,7 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
             setting = r["config"] if r["method"] != "path tracing" else f"{r['value']} → {r['spp']} spp"
             if r["config"] == "paper_default":
                 setting = (f"paper: L{r['sh_order']}, {r['samples']} paths, grid {r['grid']}, "
-                           f"h {r['hysteresis']}")
+                           f"h {r['hysteresis']}, {r['bounces']} bounces")
             report.append(f"| {r['method']} | {setting} | {fmt(r['ms_per_frame'])} | {fmt(r.get('probe_ms'))} | "
                           f"{fmt(r.get('psnr'), 2)} | {fmt(r.get('ssim'), 3)} | {fmt(r.get('rmse'), 4)} | "
                           f"{'●' if r.get('pareto') else ''} |")

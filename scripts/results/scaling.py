@@ -26,7 +26,7 @@ def section_scaling(runner, cfg, scenes, results_dir, report):
         f"), {cfg['scaling_frames']} frames per run; figures are medians over the steady frames (frame 0, "
         "which builds pipelines and uploads every probe, is left out; *output* is the last frame's "
         "file writing, not part of *frame*). Probe settings are the scene's "
-        "defaults (sidecar grid, L2, 256 paths per probe, 4 bounces). *frame* = pose + probe update + "
+        "defaults (sidecar grid, L2, 256 paths per probe, 15 bounces). *frame* = pose + probe update + "
         "upload + raster, without output.\n")
     report.append(
         "*Naive* is computed, not run: N × (probe update + upload + 1-view raster), i.e. one probe "

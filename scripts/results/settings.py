@@ -34,6 +34,7 @@ FULL = {
         "grid": ["sidecar", "half"],
         "sh_order": [1, 2, 3, 4],
         "hysteresis": [0.9, 0.95, 0.99],
+        "bounces": [4],
     },
     "pt_spp": [1, 2, 4, 8, 16],
     # scenes/cornell_light.gltf, one run per hysteresis and blend from t = 0 to the last event +
@@ -80,6 +81,7 @@ QUICK = {
 }
 
 # The paper's settings (DDISH-GI): L2 probes, 256 paths per probe per update, the grid of the
-# scene's sidecar (../shared/scenes/README.md), hysteresis 0.95 (ddish's default).
-DEFAULTS = {"probe_samples": 256, "grid": "sidecar", "sh_order": 2, "hysteresis": 0.95}
-DEFAULTS_QUICK = {"probe_samples": 64, "grid": "sidecar", "sh_order": 2, "hysteresis": 0.95}
+# scene's sidecar (../shared/scenes/README.md), hysteresis 0.95 (ddish's default), and ddish's
+# default probe path length (15 bounces: the reference's 16 less the rasterized surface).
+DEFAULTS = {"probe_samples": 256, "grid": "sidecar", "sh_order": 2, "hysteresis": 0.95, "bounces": 15}
+DEFAULTS_QUICK = {"probe_samples": 64, "grid": "sidecar", "sh_order": 2, "hysteresis": 0.95, "bounces": 15}
