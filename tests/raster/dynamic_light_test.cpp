@@ -27,8 +27,7 @@ constexpr int kSize = 33;  // the centre pixel sees the ground at the origin
 // A ground quad with a sphere floating over it and a point light whose node steps from `a`
 // (t < 1) to `b` (t >= 1), the way the bundled scene's light moves.
 scene::Scene stepping_light_scene(const glm::vec3& a, const glm::vec3& b) {
-  scene::Scene s = one_mesh_scene(ground_quad(2.0f), make_material({0.6f, 0.6f, 0.6f}, 0.0f, 0.9f));
-  add_instance(s, uv_sphere(0.3f, 24, 12), make_material({0.8f, 0.2f, 0.2f}, 0.0f, 0.9f), {0, 0.8f, 0});
+  scene::Scene s = sphere_over_ground(0.9f);
   scene::Light lamp;
   lamp.name = "lamp";
   lamp.type = scene::LightType::Point;

@@ -124,6 +124,15 @@ inline void add_instance(scene::Scene& s, scene::Mesh mesh, const scene::Materia
   s.pose(s.time);
 }
 
+// A grey 2 m ground quad (roughness `ground_roughness`) under a red sphere of radius 0.3 m
+// floating at 0.8 m: the light-and-shadow scene of several tests, which add their own lights.
+inline scene::Scene sphere_over_ground(float ground_roughness) {
+  scene::Scene s =
+      one_mesh_scene(ground_quad(2.0f), make_material({0.6f, 0.6f, 0.6f}, 0.0f, ground_roughness));
+  add_instance(s, uv_sphere(0.3f, 24, 12), make_material({0.8f, 0.2f, 0.2f}, 0.0f, 0.9f), {0, 0.8f, 0});
+  return s;
+}
+
 // Adds a light on its own node at `position` travelling along `direction`.
 inline void add_light(scene::Scene& s, scene::Light light, const glm::vec3& position,
                       const glm::vec3& direction) {

@@ -27,8 +27,7 @@ using gpu::test::GpuTest;
 class RendererTest : public GpuTest {};
 
 scene::Scene spot_scene() {
-  scene::Scene s = one_mesh_scene(ground_quad(2.0f), make_material({0.6f, 0.6f, 0.6f}, 0.0f, 0.4f));
-  add_instance(s, uv_sphere(0.3f, 24, 12), make_material({0.8f, 0.2f, 0.2f}, 0.0f, 0.9f), {0, 0.8f, 0});
+  scene::Scene s = sphere_over_ground(0.4f);
   scene::Light spot;
   spot.name = "spot";
   spot.type = scene::LightType::Spot;
