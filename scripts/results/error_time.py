@@ -6,8 +6,10 @@ import shutil
 import time
 from pathlib import Path
 
+from common import (SCENE_NAMES, StepFailed, compare_many, finite, fmt, frame_stats, log, median, only_exr,
+                    plot, reference, render, write_csv)
+from error_cameras import cameras_table
 from settings import DEFAULTS, DEFAULTS_QUICK
-from common import (SCENE_NAMES, StepFailed, compare_many, finite, fmt, frame_stats, log, median, only_exr, plot, reference, render, write_csv)
 
 
 def grid_counts(runner, path):
@@ -52,6 +54,7 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
         report.append(f"Left out of this section to keep the {cfg['mode']} run within its time: "
                       f"{', '.join(left)}.\n")
     summary = {}
+    camera_rows_all = []
     for key, sc in cfg["error_scenes"].items():
         path = scenes[key]
         if not path.is_file():
@@ -178,4 +181,10 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
                           "probes.\n")
         summary[key] = {"paper": paper, "equal_time": eq,
                         "direct": next((r for r in rows if r["config"] == "direct"), None)}
+        if cfg.get("error_all_cameras"):
+            camera_rows_all += cameras_table(runner, cache, key, path, (W, H), sc["ref_spp"], frames,
+                                             defaults, report)
+    if camera_rows_all:
+        write_csv(results_dir / "error_cameras.csv", list(camera_rows_all[0].keys()), camera_rows_all)
+        report.append("Every-camera CSV: [results/error_cameras.csv](results/error_cameras.csv).\n")
     return summary

@@ -29,6 +29,9 @@ FULL = {
         "sponza": {"size": (160, 120), "ref_spp": 512},
     },
     "error_frames": 24,
+    # Also the paper settings, equal-time path tracing and direct light from every camera of a
+    # scene with several (error_cameras.py).
+    "error_all_cameras": True,
     "sweep": {
         "probe_samples": [16, 64, 256],
         "grid": ["sidecar", "half"],
