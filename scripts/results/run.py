@@ -84,8 +84,6 @@ def main():
               file=sys.stderr)
         return 2
     results_dir.mkdir(parents=True, exist_ok=True)
-    for old in list(results_dir.glob("*.csv")) + list(results_dir.glob("*.png")):
-        old.unlink()
     cache.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix="ddish-results-"))
     runner = Runner(build, work, results_dir / "commands.txt")
@@ -93,7 +91,10 @@ def main():
     log(f"{cfg['mode']} run: build {build}, scenes {scenes_dir}, cache {cache}, output {out_dir}")
 
     started = datetime.datetime.now(datetime.timezone.utc)
+    # The machine and commit first: removing the old outputs below would mark the tree dirty.
     info, _ = machine(runner)
+    for old in list(results_dir.glob("*.csv")) + list(results_dir.glob("*.png")):
+        old.unlink()
 
     body = []
     failures = []
