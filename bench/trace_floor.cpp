@@ -35,6 +35,7 @@
 #include "probes/tracer_source.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
+#include "trace/embree_scene.h"
 #include "trace/sampler.h"
 #include "trace/tracer.h"
 
@@ -118,19 +119,7 @@ class FlatScene {
                         rtcInitIntersectContext(&context);
                         std::uint64_t local = 0;
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          const trace::Ray& r = rays[i];
-                          RTCRayHit rh{};
-                          rh.ray.org_x = r.origin.x;
-                          rh.ray.org_y = r.origin.y;
-                          rh.ray.org_z = r.origin.z;
-                          rh.ray.dir_x = r.direction.x;
-                          rh.ray.dir_y = r.direction.y;
-                          rh.ray.dir_z = r.direction.z;
-                          rh.ray.tnear = r.tmin;
-                          rh.ray.tfar = r.tmax;
-                          rh.ray.mask = 0xFFFFFFFFu;
-                          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                          rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+                          RTCRayHit rh = trace::to_rtc_rayhit(rays[i]);
                           rtcIntersect1(scene_, &context, &rh);
                           if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) ++local;
                         }

@@ -50,6 +50,25 @@ struct RayQuery {
   int fixed_mip_level = -1;
 };
 
+// An Embree ray-hit record for `ray` (full mask, id and flags 0, time 0), its hit fields set to
+// "no hit" so that rtcIntersect1 can fill them.
+inline RTCRayHit to_rtc_rayhit(const Ray& ray) {
+  RTCRayHit rh{};
+  rh.ray.org_x = ray.origin.x;
+  rh.ray.org_y = ray.origin.y;
+  rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.direction.x;
+  rh.ray.dir_y = ray.direction.y;
+  rh.ray.dir_z = ray.direction.z;
+  rh.ray.tnear = ray.tmin;
+  rh.ray.tfar = ray.tmax;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  for (unsigned& id : rh.hit.instID) id = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
 class EmbreeScene {
  public:
   // The scene and the texture set must outlive this object (meshes and textures are read at
