@@ -24,8 +24,22 @@ for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
 done
 
-if [ ${#missing[@]} -eq 0 ]; then
-  echo "bootstrap: all ${#PACKAGES[@]} packages present"
+# The CPU Vulkan device is Mesa 25 lavapipe from bookworm-backports: 2.5-3x faster fragment
+# shading than bookworm's Mesa 22.3, and it has the ray-tracing extensions (docs/conventions.md).
+# The code keeps working on Mesa 22; this only picks the faster driver.
+MESA_MIN_MAJOR=25
+BACKPORTS_LIST=/etc/apt/sources.list.d/bookworm-backports.sources
+mesa_major() {
+  dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null | cut -d. -f1
+}
+need_mesa=0
+if [ "${DDISH_STOCK_MESA:-0}" != 1 ] && grep -q 'VERSION_CODENAME=bookworm' /etc/os-release 2>/dev/null; then
+  major=$(mesa_major)
+  [ -n "$major" ] && [ "$major" -ge "$MESA_MIN_MAJOR" ] 2>/dev/null || need_mesa=1
+fi
+
+if [ ${#missing[@]} -eq 0 ] && [ $need_mesa -eq 0 ]; then
+  echo "bootstrap: all ${#PACKAGES[@]} packages present (mesa-vulkan-drivers $(dpkg-query -W -f='${Version}' mesa-vulkan-drivers))"
   exit 0
 fi
 
@@ -34,8 +48,23 @@ if [ "$(id -u)" -ne 0 ]; then
   command -v sudo >/dev/null || { echo "bootstrap: not root and no sudo; install: ${missing[*]}" >&2; exit 1; }
   SUDO="sudo"
 fi
-
-echo "bootstrap: installing ${#missing[@]} package(s): ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
+
+if [ $need_mesa -eq 1 ] && [ ! -f "$BACKPORTS_LIST" ] && ! grep -rqs 'bookworm-backports' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+  echo "bootstrap: adding the bookworm-backports suite ($BACKPORTS_LIST)"
+  printf 'Types: deb\nURIs: http://deb.debian.org/debian\nSuites: bookworm-backports\nComponents: main\nSigned-By: /usr/share/keyrings/debian-archive-keyring.gpg\n' |
+    $SUDO tee "$BACKPORTS_LIST" >/dev/null
+fi
+
 $SUDO apt-get update -q
-$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "bootstrap: installing ${#missing[@]} package(s): ${missing[*]}"
+  $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+if [ $need_mesa -eq 1 ]; then
+  # apt pulls the matching libdrm, mesa-libgallium and every Mesa package already installed
+  # (their versions must equal the driver's).
+  echo "bootstrap: installing Mesa $MESA_MIN_MAJOR lavapipe from bookworm-backports"
+  $SUDO apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
+fi
+echo "bootstrap: mesa-vulkan-drivers $(dpkg-query -W -f='${Version}' mesa-vulkan-drivers)"
