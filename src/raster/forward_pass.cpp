@@ -4,6 +4,7 @@
 #include <string>
 
 #include "gpu/device.h"
+#include "gpu/driver_quirks.h"
 #include "gpu/error.h"
 #include "raster/gpu_meshes.h"
 #include "raster/gpu_types.h"
@@ -61,6 +62,7 @@ ForwardPass::ForwardPass(const gpu::Device& device, const ForwardPassDesc& desc)
   if (device.features().multiview)
     max_multiview_ = std::max(1u, device.info().max_multiview_view_count);
   layered_supported_ = device.features().shader_output_layer;
+  reset_view_mask_ = gpu::multiview_defect(device.info()) == gpu::MultiviewDefect::timestamps_after_pass_overrun;
   pipeline_for(ViewMethod::per_view, 1);
 }
 
@@ -131,6 +133,22 @@ void ForwardPass::begin_pass(VkCommandBuffer cmd, const RenderTarget& target, Vk
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0,
                           static_cast<std::uint32_t>(sets.size()), sets.data(), 0, nullptr);
+}
+
+void ForwardPass::record_view_mask_reset(VkCommandBuffer cmd, const RenderTarget& target) const {
+  // Loads and stores layer 0 unchanged: nothing is drawn, only the driver's state is reset.
+  VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  color.imageView = target.color_view(0);
+  color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  info.renderArea = {{0, 0}, {target.desc().width, target.desc().height}};
+  info.layerCount = 1;
+  info.colorAttachmentCount = 1;
+  info.pColorAttachments = &color;
+  vkCmdBeginRendering(cmd, &info);
+  vkCmdEndRendering(cmd);
 }
 
 void ForwardPass::draw_items(VkCommandBuffer cmd, const scene::Scene& scene,
@@ -205,6 +223,7 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
         ++passes_;
         first += count;
       }
+      if (reset_view_mask_) record_view_mask_reset(cmd, target);
       break;
     case ViewMethod::layered: {
       const VkPipeline pipeline = pipeline_for(ViewMethod::layered, n);

@@ -92,6 +92,9 @@ class ForwardPass {
   void draw_items(VkCommandBuffer cmd, const scene::Scene& scene, const MaterialTextures& materials,
                   std::span<const DrawItem> items, std::uint32_t view_index,
                   std::uint32_t first_instance) const;
+  // An empty one-view pass that clears a driver's leftover view mask (gpu/driver_quirks.h:
+  // lavapipe 25 overruns the next timestamp query pool otherwise).
+  void record_view_mask_reset(VkCommandBuffer cmd, const RenderTarget& target) const;
 
   const gpu::Device& device_;
   ForwardPassDesc desc_;
@@ -100,6 +103,7 @@ class ForwardPass {
   std::optional<gpu::ShaderModule> layered_vertex_;  // loaded on first use
   std::uint32_t max_multiview_ = 1;
   bool layered_supported_ = false;
+  bool reset_view_mask_ = false;  // after multiview passes: record_view_mask_reset
   Pipeline pipeline_;                                      // per-view passes
   Pipeline layered_pipeline_;                              // made on first use
   std::map<std::uint32_t, Pipeline> multiview_pipelines_;  // by view mask, made on first use

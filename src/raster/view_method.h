@@ -12,6 +12,10 @@
 // the guard band) loses its view index and is drawn into the pass's first view only, so big
 // walls of view k show up in view 0 (tests/raster/multiview_test.cpp keeps a canary). Layered
 // passes are exact: gl_Layer survives the clipper. Hence per_view is RendererOptions' default.
+// On lavapipe of Mesa 25 multiview is exact, but the driver keeps the last pass's view mask
+// for timestamp queries and wrote past the query pool (a crash in its queue thread): the forward
+// pass records an empty one-view pass after its multiview passes there (gpu/driver_quirks.h,
+// pinned by tests/gpu/test_driver_quirks.cpp).
 //
 // Measured (bench/raster_views, Breakfast room 262,687 triangles drawn, 420x560 tiles, a
 // 48-view-style light-field rig, lavapipe on the shared 2-core box at load average 3.5-7, so
