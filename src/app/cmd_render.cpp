@@ -20,6 +20,7 @@
 // Progress goes to stderr, one line per frame; --timings writes render_timings.h's JSON.
 // With validation on (DDISH_VALIDATION=1) any validation error makes the run exit 1.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -35,6 +36,7 @@
 #include "app/commands.h"
 #include "app/frame_loop.h"
 #include "app/frame_outputs.h"
+#include "app/output_queue.h"
 #include "app/plan_report.h"
 #include "app/probe_options.h"
 #include "app/render_timings.h"
@@ -198,11 +200,22 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   // would make a direct-light-only run's frame time meaningless as a baseline).
   options.update_probes = !a.no_indirect;
   if (a.no_indirect) std::fprintf(stderr, "render: --no-indirect: probes are neither traced nor drawn\n");
+  // Images are encoded and written by the queue's thread while the next frames are drawn; the
+  // loop's "output" stage is the copy of the views plus any wait for room in the queue, and the
+  // last frame's "output_drain" the wait for the writer to finish after the loop.
+  OutputQueue queue(writer);
   const FrameSink sink = [&](int k, const raster::FrameOutput& frame) {
     const std::string tag = a.every ? fmt::format("{:04d}", k) : "";
-    return writer.write(frame_images(frame), fmt::format("frame_{:04d}", k), tag);
+    queue.push(frame.views, fmt::format("frame_{:04d}", k), tag);
+    return std::vector<fs::path>{};
   };
   run.result = loop.run(options, sink, [&](const FrameReport& r) { print_progress(r, a.frames); });
+  const auto drain_start = std::chrono::steady_clock::now();
+  run.result.written = queue.finish();
+  if (!run.result.timings.frames().empty())
+    run.result.timings.last().add(
+        "output_drain",
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - drain_start).count());
   return run;
 }
 

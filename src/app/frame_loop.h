@@ -4,7 +4,8 @@
 // stage's milliseconds go into a metrics::FrameTimings per frame:
 //   pose, tracer_update (animated scenes), probe_update, upload, raster_record (CPU: frame data
 //   and command recording), shadow_gpu / forward_gpu / tonemap_gpu (GPU timestamps), raster_wait
-//   (the rest of the wait for the GPU: submission, resolve, copies), readback, output.
+//   (the rest of the wait for the GPU: submission, resolve, copies), readback, output (the
+//   sink's time: for `render`, handing the views to the writer thread, app/output_queue.h).
 // They do not overlap, so a frame's total_ms is its wall time; rasterization is
 // raster_record + the three *_gpu + raster_wait. All N views of a frame go to the renderer in
 // one call, after the one probe update they share.

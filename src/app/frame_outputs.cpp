@@ -29,9 +29,9 @@ metrics::Image display_image(const raster::ViewImage& v) {
   metrics::Image img(v.width, v.height);
   for (std::size_t i = 0; i < v.display.size(); ++i) {
     const std::uint32_t p = v.display[i];
-    img.pixels()[i] = {metrics::srgb_decode(float(p & 0xffu) / 255.0f),
-                       metrics::srgb_decode(float((p >> 8) & 0xffu) / 255.0f),
-                       metrics::srgb_decode(float((p >> 16) & 0xffu) / 255.0f)};
+    img.pixels()[i] = {metrics::srgb8_decode(std::uint8_t(p & 0xffu)),
+                       metrics::srgb8_decode(std::uint8_t((p >> 8) & 0xffu)),
+                       metrics::srgb8_decode(std::uint8_t((p >> 16) & 0xffu))};
   }
   return img;
 }

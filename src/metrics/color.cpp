@@ -1,5 +1,7 @@
 #include "metrics/color.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace ddish::metrics {
@@ -29,6 +31,38 @@ float clamp01(float v) {
 glm::vec3 display_value(const glm::vec3& linear) {
   return {srgb_encode(clamp01(linear.x)), srgb_encode(clamp01(linear.y)),
           srgb_encode(clamp01(linear.z))};
+}
+
+namespace {
+
+struct Srgb8Tables {
+  std::array<float, 256> decoded{};
+  // midpoint[c]: the linear value half way between codes c and c + 1 in encoded space; a value
+  // at or above it rounds to c + 1.
+  std::array<float, 255> midpoint{};
+  Srgb8Tables() {
+    for (int c = 0; c < 256; ++c) decoded[std::size_t(c)] = srgb_decode(float(c) / 255.0f);
+    for (int c = 0; c < 255; ++c) {
+      const double e = (double(c) + 0.5) / 255.0;
+      midpoint[std::size_t(c)] = static_cast<float>(
+          e <= 0.04045 ? e / 12.92 : std::pow((e + 0.055) / 1.055, 2.4));
+    }
+  }
+};
+
+const Srgb8Tables& srgb8_tables() {
+  static const Srgb8Tables tables;
+  return tables;
+}
+
+}  // namespace
+
+float srgb8_decode(std::uint8_t code) { return srgb8_tables().decoded[code]; }
+
+std::uint8_t srgb8_encode(float linear) {
+  if (!(linear > 0.0f)) return 0;  // NaN and everything at or below 0
+  const auto& m = srgb8_tables().midpoint;
+  return static_cast<std::uint8_t>(std::upper_bound(m.begin(), m.end(), linear) - m.begin());
 }
 
 float luminance(const glm::vec3& rgb) {

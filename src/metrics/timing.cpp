@@ -46,6 +46,11 @@ double StageTimer::stop() {
   return ms;
 }
 
+FrameTimings& TimingLog::last() {
+  if (frames_.empty()) throw std::logic_error("a timing log without frames has no last frame");
+  return frames_.back();
+}
+
 nlohmann::ordered_json TimingLog::to_json() const {
   nlohmann::ordered_json frames = nlohmann::ordered_json::array();
   struct Summary {

@@ -58,6 +58,9 @@ class TimingLog {
  public:
   void add(FrameTimings frame) { frames_.push_back(std::move(frame)); }
   const std::vector<FrameTimings>& frames() const { return frames_; }
+  // The newest frame, for a stage that ends after the frame loop (e.g. waiting for the output
+  // writer). Throws std::logic_error when there is none.
+  FrameTimings& last();
 
   nlohmann::ordered_json to_json() const;
   // Reads the "frames" of a to_json() document (the summary is derived, so it is not read).
