@@ -211,7 +211,8 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
       // A target without view blocks gets one-view multiview passes (still correct).
       for (std::uint32_t b = 0, first = 0; first < n; ++b) {
         const bool blocks = target.block_count() > 0;
-        const std::uint32_t count = blocks ? target.block_layers(b) : 1u;
+        // A frame's last batch may fill only part of the target's last block.
+        const std::uint32_t count = blocks ? std::min(target.block_layers(b), n - first) : 1u;
         items_.clear();
         build_draws(scene, meshes, order, pass_views(first, count), views.cull, items_, stats_);
         begin_pass(cmd, target, blocks ? target.color_block_view(b) : target.color_view(first),

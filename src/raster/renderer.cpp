@@ -152,7 +152,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT);
   if (timer_) timer_->begin(cmd, kTonemapRange);
-  const auto pixels = static_cast<std::uint32_t>(hdr_readback_.size() / 8);
+  const auto pixels = static_cast<std::uint32_t>(resolved.layer_bytes() / 8 * views.size());
   tonemapper_.record(cmd, hdr_readback_, display_readback_, pixels, options_.tone_curve,
                      options_.exposure);
   if (timer_) timer_->end(cmd, kTonemapRange);
@@ -172,62 +172,26 @@ bool Renderer::shadows_current(const scene::Scene& scene,
   return true;
 }
 
-FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::View> views) {
-  if (views.empty()) throw std::invalid_argument("render: no views");
-  for (const scene::View& v : views)
-    if (v.width != views.front().width || v.height != views.front().height || v.width <= 0 ||
-        v.height <= 0)
-      throw std::invalid_argument("render: every view needs the same positive size");
-  FrameOutput out;
-  auto t0 = std::chrono::steady_clock::now();
-  const auto w = static_cast<std::uint32_t>(views.front().width);
-  const auto h = static_cast<std::uint32_t>(views.front().height);
-  const auto n = static_cast<std::uint32_t>(views.size());
-  ensure_target(w, h, n);
-
-  const ShadowLayout layout = layout_shadows(scene.lights, views, scene.bounds(), shadow_settings_);
-  std::vector<ViewData> view_data;
-  for (const scene::View& v : views) view_data.push_back({v.projection * v.view, glm::vec4(v.eye(), 1.0f)});
-  FrameData frame;
-  frame.environment = glm::vec4(scene.environment(), 0.0f);
-  frame.counts = {static_cast<std::uint32_t>(layout.lights.size()),
-                  static_cast<std::uint32_t>(layout.layers.size()), n, 0u};
-  frame.shadow_params = {1.0f / float(shadows_.map_size()), 1.0f, 0.0f, 0.0f};
-  frame_.update(frame, view_data, layout.lights, layout.layers);
-
-  out.stats.shadows_reused = shadows_current(scene, layout.layers);
-  const auto shadow_layers =
-      out.stats.shadows_reused ? 0u : static_cast<std::uint32_t>(layout.layers.size());
-  double record_ms = 0.0;
-  auto t_submit = t0;
-  runner_.run([&](VkCommandBuffer cmd) {
-    record_frame(cmd, scene, views, shadow_layers);
-    record_ms = ms_since(t0);
-    t_submit = std::chrono::steady_clock::now();
-  });
-  out.stats.record_ms = record_ms;
-  out.stats.execute_ms = ms_since(t_submit);
-  out.stats.shadow_passes = shadows_.passes_recorded();
-  if (shadow_layers > 0) {
-    shadow_layers_ = layout.layers;
-    shadow_transforms_.clear();
-    for (const scene::Instance& inst : scene.instances) shadow_transforms_.push_back(inst.transform);
+std::uint32_t Renderer::batch_size(std::uint32_t width, std::uint32_t height,
+                                   std::uint32_t views) const {
+  std::uint32_t g = options_.batch_views;
+  if (g == 0) {
+    // Per view: MSAA colour (RGBA16F) and depth (D32) samples, the resolve image, the HDR and
+    // display readbacks.
+    const std::uint64_t per_view =
+        std::uint64_t{width} * height * (std::uint64_t{samples_} * (8 + 4) + 8 + 8 + 4);
+    g = static_cast<std::uint32_t>(std::max<std::uint64_t>(1, RendererOptions::kBatchTargetBytes / per_view));
+    const std::uint32_t block = forward_->views_per_pass();
+    if (options_.view_method == ViewMethod::multiview && g > block) g -= g % block;
   }
-  out.stats.forward_passes = forward_->passes_recorded();
-  out.stats.cull = forward_->cull_stats();
-  out.stats.tonemap_passes = 1;
-  if (timer_) {
-    const std::vector<double> ms = timer_->all_milliseconds();
-    out.stats.shadow_gpu_ms = ms[kShadowRange];
-    out.stats.forward_gpu_ms = ms[kForwardRange];
-    out.stats.tonemap_gpu_ms = ms[kTonemapRange];
-  }
+  return std::min({g, views, FrameResources::kMaxViews});
+}
 
-  const auto t_read = std::chrono::steady_clock::now();
+void Renderer::read_views(std::uint32_t w, std::uint32_t h, std::uint32_t count, FrameOutput& out) const {
   const std::size_t per_view = std::size_t(w) * h;
   const auto* halves = static_cast<const std::uint16_t*>(hdr_readback_.mapped());
   const auto* display = static_cast<const std::uint32_t*>(display_readback_.mapped());
-  for (std::uint32_t v = 0; v < n; ++v) {
+  for (std::uint32_t v = 0; v < count; ++v) {
     ViewImage img;
     img.width = static_cast<int>(w);
     img.height = static_cast<int>(h);
@@ -239,7 +203,70 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
     img.display.assign(display + per_view * v, display + per_view * (v + 1));
     out.views.push_back(std::move(img));
   }
-  out.stats.readback_ms = ms_since(t_read);
+}
+
+FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::View> views) {
+  if (views.empty()) throw std::invalid_argument("render: no views");
+  for (const scene::View& v : views)
+    if (v.width != views.front().width || v.height != views.front().height || v.width <= 0 ||
+        v.height <= 0)
+      throw std::invalid_argument("render: every view needs the same positive size");
+  FrameOutput out;
+  const auto w = static_cast<std::uint32_t>(views.front().width);
+  const auto h = static_cast<std::uint32_t>(views.front().height);
+  const auto n = static_cast<std::uint32_t>(views.size());
+  const std::uint32_t batch = batch_size(w, h, n);
+  ensure_target(w, h, batch);
+  out.views.reserve(n);
+
+  // The shadow layout (cascades fitted to every view) and the maps are the frame's, drawn by
+  // the first batch and read by all.
+  const ShadowLayout layout = layout_shadows(scene.lights, views, scene.bounds(), shadow_settings_);
+  out.stats.shadows_reused = shadows_current(scene, layout.layers);
+  std::uint32_t shadow_layers =
+      out.stats.shadows_reused ? 0u : static_cast<std::uint32_t>(layout.layers.size());
+  for (std::uint32_t first = 0; first < n; first += batch) {
+    const std::uint32_t count = std::min(batch, n - first);
+    const std::span<const scene::View> part = views.subspan(first, count);
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<ViewData> view_data;
+    for (const scene::View& v : part) view_data.push_back({v.projection * v.view, glm::vec4(v.eye(), 1.0f)});
+    FrameData frame;
+    frame.environment = glm::vec4(scene.environment(), 0.0f);
+    frame.counts = {static_cast<std::uint32_t>(layout.lights.size()),
+                    static_cast<std::uint32_t>(layout.layers.size()), count, 0u};
+    frame.shadow_params = {1.0f / float(shadows_.map_size()), 1.0f, 0.0f, 0.0f};
+    frame_.update(frame, view_data, layout.lights, layout.layers);
+
+    double record_ms = 0.0;
+    auto t_submit = t0;
+    runner_.run([&](VkCommandBuffer cmd) {
+      record_frame(cmd, scene, part, shadow_layers);
+      record_ms = ms_since(t0);
+      t_submit = std::chrono::steady_clock::now();
+    });
+    out.stats.record_ms += record_ms;
+    out.stats.execute_ms += ms_since(t_submit);
+    out.stats.shadow_passes += shadows_.passes_recorded();
+    if (shadow_layers > 0) {
+      shadow_layers_ = layout.layers;
+      shadow_transforms_.clear();
+      for (const scene::Instance& inst : scene.instances) shadow_transforms_.push_back(inst.transform);
+      shadow_layers = 0;  // the later batches read the maps the first one drew
+    }
+    out.stats.forward_passes += forward_->passes_recorded();
+    out.stats.cull += forward_->cull_stats();
+    out.stats.tonemap_passes += 1;
+    if (timer_) {
+      const std::vector<double> ms = timer_->all_milliseconds();
+      out.stats.shadow_gpu_ms += ms[kShadowRange];
+      out.stats.forward_gpu_ms += ms[kForwardRange];
+      out.stats.tonemap_gpu_ms += ms[kTonemapRange];
+    }
+    const auto t_read = std::chrono::steady_clock::now();
+    read_views(w, h, count, out);
+    out.stats.readback_ms += ms_since(t_read);
+  }
   return out;
 }
 

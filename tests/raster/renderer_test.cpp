@@ -126,6 +126,42 @@ TEST_F(RendererTest, SeveralViewsEqualSeparateFrames) {
   EXPECT_NE(both.views[0].linear, both.views[1].linear);
 }
 
+TEST_F(RendererTest, BatchesOfViewsEqualOneSubmission) {
+  // Views drawn a few at a time into a reused target (RendererOptions::batch_views) give the
+  // images of one submission of all views; the shadow maps are drawn once for the frame.
+  scene::Scene s = spot_scene();
+  const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {2, 2, 2}));
+  std::vector<scene::View> views;
+  for (int i = 0; i < 10; ++i)
+    views.push_back(scene::look_at_view({-1.0f + 0.2f * float(i), 2.5f, 3.0f}, {0, 0.3f, 0}, {0, 1, 0},
+                                        0.8f, 24, 20));
+  std::vector<ViewMethod> methods{ViewMethod::per_view};
+  if (device().features().multiview) methods.push_back(ViewMethod::multiview);
+  for (ViewMethod method : methods) {
+    Renderer whole(device(), s, volume, {.msaa = 4, .view_method = method, .batch_views = 10});
+    Renderer batched(device(), s, volume, {.msaa = 4, .view_method = method, .batch_views = 8});
+    EXPECT_EQ(batched.batch_size(24, 20, 10), 8u);
+    const FrameOutput one = whole.render(s, views);
+    const FrameOutput two = batched.render(s, views);
+    ASSERT_EQ(two.views.size(), views.size());
+    EXPECT_EQ(two.stats.shadow_passes, one.stats.shadow_passes) << to_string(method);
+    EXPECT_EQ(two.stats.shadow_passes, 1u) << to_string(method);
+    EXPECT_EQ(two.stats.tonemap_passes, 2u) << to_string(method);
+    EXPECT_EQ(one.stats.tonemap_passes, 1u) << to_string(method);
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      EXPECT_EQ(two.views[v].linear, one.views[v].linear) << to_string(method) << ", view " << v;
+      EXPECT_EQ(two.views[v].display, one.views[v].display) << to_string(method) << ", view " << v;
+    }
+  }
+  // The automatic batch keeps a frame's target within RendererOptions::kBatchTargetBytes.
+  Renderer automatic(device(), s, volume, {.msaa = 4});
+  EXPECT_EQ(automatic.batch_size(24, 20, 10), 10u);
+  const std::uint32_t big = automatic.batch_size(1024, 910, 72);
+  EXPECT_GE(big, 1u);
+  EXPECT_LE(std::uint64_t{big} * 1024 * 910 * (4 * 12 + 20), RendererOptions::kBatchTargetBytes);
+  EXPECT_GT(std::uint64_t{big + 1} * 1024 * 910 * (4 * 12 + 20), RendererOptions::kBatchTargetBytes);
+}
+
 TEST_F(RendererTest, StaticShadowMapsAreKept) {
   scene::Scene s = spot_scene();
   const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {2, 2, 2}));
