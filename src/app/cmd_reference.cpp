@@ -174,14 +174,14 @@ int run_reference(const ReferenceArgs& args) {
       points.push_back({img.spp, img.seconds, to_image(img)});
   };
 
-  FrameImages images;
+  std::vector<metrics::Image> images;  // linear, one per view
   nlohmann::ordered_json per_view = nlohmann::ordered_json::array();
   trace::ReferenceImage totals;  // summed over the views; spp is the least any view reached
   totals.spp = args.spp;
   for (std::size_t i = 0; i < set.size(); ++i) {
     if (set.size() > 1) std::fprintf(stderr, "reference: view %zu/%zu\n", i + 1, set.size());
     const trace::ReferenceImage r = trace::render_reference(tracer, set.views[i], options, callbacks);
-    images.linear.push_back(to_image(r));
+    images.push_back(to_image(r));
     per_view.push_back(view_meta(set.views[i], r));
     totals.spp = std::min(totals.spp, r.spp);
     totals.time_limited = totals.time_limited || r.time_limited;
@@ -191,16 +191,15 @@ int run_reference(const ReferenceArgs& args) {
     totals.invalid_paths += r.invalid_paths;
   }
   // The reference has no tone curve: its PNG is the linear image clamped and sRGB-encoded.
-  images.display = images.linear;
   const FrameWriter writer(set, {.dir = out_dir,
                                  .stem = fs::path(args.scene).stem().string(),
                                  .per_view = !choice.single(),
                                  .calibration = std::nullopt});
-  const std::vector<fs::path> written = writer.write(images, "reference", "");
+  const std::vector<fs::path> written = writer.write(LinearFrameViews(images), "reference", "");
   if (!args.convergence.empty()) {
     // A time-limited run ends below --spp: drop the points at or above what it reached.
     std::erase_if(points, [&](const ConvergencePoint& p) { return p.spp >= totals.spp; });
-    write_convergence(args.convergence, points, images.linear.front());
+    write_convergence(args.convergence, points, images.front());
   }
 
   const scene::View& view = set.views.front();

@@ -201,12 +201,12 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   options.update_probes = !a.no_indirect;
   if (a.no_indirect) std::fprintf(stderr, "render: --no-indirect: probes are neither traced nor drawn\n");
   // Images are encoded and written by the queue's thread while the next frames are drawn; the
-  // loop's "output" stage is the copy of the views plus any wait for room in the queue, and the
+  // loop's "output" stage is the hand-over of the views plus any wait for the writer, and the
   // last frame's "output_drain" the wait for the writer to finish after the loop.
   OutputQueue queue(writer);
-  const FrameSink sink = [&](int k, const raster::FrameOutput& frame) {
+  const FrameSink sink = [&](int k, raster::FrameOutput& frame) {
     const std::string tag = a.every ? fmt::format("{:04d}", k) : "";
-    queue.push(frame.views, fmt::format("frame_{:04d}", k), tag);
+    queue.push(std::move(frame.views), fmt::format("frame_{:04d}", k), tag);
     return std::vector<fs::path>{};
   };
   run.result = loop.run(options, sink, [&](const FrameReport& r) { print_progress(r, a.frames); });

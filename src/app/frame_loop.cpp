@@ -104,7 +104,7 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
       report.counts.probes_uploaded =
           dirty.empty() ? 0u : renderer_.upload_probes(volume_, dirty).probes;
     }
-    const raster::FrameOutput frame = renderer_.render(scene_, views);
+    raster::FrameOutput frame = renderer_.render(scene_, views);
     // The GPU passes run while the CPU waits for the submission, so the wait is split into the
     // passes' timestamp durations and the rest (submission, resolve and copies, idle): the
     // stages of a frame add up to its wall time.

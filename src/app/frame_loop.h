@@ -100,9 +100,10 @@ using ViewSource = std::function<std::vector<scene::View>(const scene::Scene&)>;
 // The probe tracer's options for a frame's plan (samples, hysteresis and the blend rule).
 using UpdateOptionsFor = std::function<probes::UpdateOptions(const probes::FramePlan&)>;
 
-// Writes frame `frame`'s images and returns the files written.
+// Writes frame `frame`'s images and returns the files written. The frame is the sink's: it may
+// move the images out (the loop reads only its stats, before the sink runs).
 using FrameSink =
-    std::function<std::vector<std::filesystem::path>(int frame, const raster::FrameOutput&)>;
+    std::function<std::vector<std::filesystem::path>(int frame, raster::FrameOutput&)>;
 
 class FrameLoop {
  public:

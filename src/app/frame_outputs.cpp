@@ -1,6 +1,8 @@
 #include "app/frame_outputs.h"
 
+#include <algorithm>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <utility>
 
@@ -8,7 +10,6 @@
 
 #include "display/lenticular.h"
 #include "display/quilt.h"
-#include "display/stereo_output.h"
 #include "metrics/color.h"
 #include "metrics/image_io.h"
 #include "raster/renderer.h"
@@ -19,55 +20,65 @@ namespace fs = std::filesystem;
 
 namespace {
 
-metrics::Image linear_image(const raster::ViewImage& v) {
-  metrics::Image img(v.width, v.height);
-  img.pixels() = v.linear;
-  return img;
-}
-
-metrics::Image display_image(const raster::ViewImage& v) {
-  metrics::Image img(v.width, v.height);
-  for (std::size_t i = 0; i < v.display.size(); ++i) {
-    const std::uint32_t p = v.display[i];
-    img.pixels()[i] = {metrics::srgb8_decode(std::uint8_t(p & 0xffu)),
-                       metrics::srgb8_decode(std::uint8_t((p >> 8) & 0xffu)),
-                       metrics::srgb8_decode(std::uint8_t((p >> 16) & 0xffu))};
-  }
-  return img;
-}
-
-// A metrics::Image is a contiguous vector of glm::vec3, three packed floats a pixel: display/
-// reads it in place.
-display::ConstRgbView rgb_view(const metrics::Image& img) {
-  return {img.width(), img.height(), &img.pixels().data()->x};
-}
-
-metrics::Image to_image(const display::RgbImage& rgb) {
-  metrics::Image img(rgb.width(), rgb.height());
-  std::memcpy(img.pixels().data(), rgb.data().data(), rgb.data().size() * sizeof(float));
-  return img;
-}
-
-std::vector<display::ConstRgbView> rgb_views(const std::vector<metrics::Image>& images) {
-  std::vector<display::ConstRgbView> views;
-  views.reserve(images.size());
-  for (const metrics::Image& img : images) views.push_back(rgb_view(img));
-  return views;
-}
-
 std::string tagged(const std::string& name, const std::string& tag) {
   return tag.empty() ? name : name + "_" + tag;
 }
 
+template <typename Views>
+void check_sizes(const Views& views, const char* what) {
+  if (views.empty()) throw std::invalid_argument(std::string("a frame needs at least one ") + what);
+  for (const auto& v : views)
+    if (v.width() != views.front().width() || v.height() != views.front().height() || v.width() <= 0)
+      throw std::invalid_argument(std::string("every ") + what + " of a frame needs the same positive size");
+}
+
+struct ViewImageSize {  // raster::ViewImage has fields, not accessors
+  const raster::ViewImage& v;
+  int width() const { return v.width; }
+  int height() const { return v.height; }
+};
+
 }  // namespace
 
-FrameImages frame_images(const raster::FrameOutput& frame) {
-  FrameImages images;
-  for (const raster::ViewImage& v : frame.views) {
-    images.linear.push_back(linear_image(v));
-    images.display.push_back(display_image(v));
+RasterFrameViews::RasterFrameViews(std::span<const raster::ViewImage> views) : views_(views) {
+  std::vector<ViewImageSize> sizes;
+  for (const raster::ViewImage& v : views) sizes.push_back({v});
+  check_sizes(sizes, "view");
+}
+
+void RasterFrameViews::linear_row(std::size_t view, int y, float* rgb) const {
+  const raster::ViewImage& v = views_[view];
+  const std::size_t w = std::size_t(v.width);
+  std::memcpy(rgb, &v.linear[std::size_t(y) * w].x, 3 * w * sizeof(float));
+}
+
+void RasterFrameViews::display_row(std::size_t view, int y, std::uint8_t* rgb) const {
+  const raster::ViewImage& v = views_[view];
+  const std::size_t w = std::size_t(v.width);
+  const std::uint32_t* p = &v.display[std::size_t(y) * w];
+  for (std::size_t x = 0; x < w; ++x) {  // packed RGBA8, R in the low byte; alpha is dropped
+    rgb[3 * x] = std::uint8_t(p[x] & 0xffu);
+    rgb[3 * x + 1] = std::uint8_t((p[x] >> 8) & 0xffu);
+    rgb[3 * x + 2] = std::uint8_t((p[x] >> 16) & 0xffu);
   }
-  return images;
+}
+
+LinearFrameViews::LinearFrameViews(std::span<const metrics::Image> images) : images_(images) {
+  check_sizes(images, "image");
+}
+
+void LinearFrameViews::linear_row(std::size_t view, int y, float* rgb) const {
+  const metrics::Image& img = images_[view];
+  const std::size_t w = std::size_t(img.width());
+  std::memcpy(rgb, &img.pixels()[std::size_t(y) * w].x, 3 * w * sizeof(float));
+}
+
+void LinearFrameViews::display_row(std::size_t view, int y, std::uint8_t* rgb) const {
+  const metrics::Image& img = images_[view];
+  const std::size_t w = std::size_t(img.width());
+  const glm::vec3* p = &img.pixels()[std::size_t(y) * w];
+  for (std::size_t x = 0; x < w; ++x)
+    for (int c = 0; c < 3; ++c) rgb[3 * x + std::size_t(c)] = metrics::srgb8_encode(p[x][c]);
 }
 
 FrameWriter::FrameWriter(const display::ViewSet& set, OutputOptions options)
@@ -89,56 +100,79 @@ std::string FrameWriter::atlas_name(const std::string& tag, const std::string& e
   return display::quilt_file_name(name, layout_, aspect_, extension);
 }
 
-std::vector<fs::path> FrameWriter::write(const FrameImages& images, const std::string& single,
+std::vector<fs::path> FrameWriter::write(const FrameViews& views, const std::string& single,
                                          const std::string& tag) const {
-  if (images.linear.size() != views_ || images.display.size() != views_)
-    throw std::invalid_argument(fmt::format("a frame of {} views got {} images", views_,
-                                            images.linear.size()));
+  if (views.count() != views_ || views.width() != layout_.tile_width || views.height() != layout_.tile_height)
+    throw std::invalid_argument(fmt::format("a frame of {} views of {}x{} got {} of {}x{}", views_,
+                                            layout_.tile_width, layout_.tile_height, views.count(),
+                                            views.width(), views.height()));
   std::vector<fs::path> written;
-  auto write_pair = [&](const std::string& stem, const metrics::Image& display,
-                        const metrics::Image& linear) {
+  // One view's files, or the atlas of all views: rows gathered from the views' rows.
+  auto write_pair = [&](const std::string& stem, int width, int height,
+                        const std::function<void(int y, std::uint8_t*)>& display_row,
+                        const std::function<void(int y, float*)>& linear_row) {
     const fs::path png = options_.dir / (stem + ".png");
     const fs::path exr = options_.dir / (stem + ".exr");
-    metrics::write_png(png, display);
-    metrics::write_exr(exr, linear);
+    metrics::write_png_rows(png, width, height, display_row);
+    metrics::write_exr_rows(exr, width, height, linear_row);
     written.push_back(png);
     written.push_back(exr);
   };
+  const int w = views.width(), h = views.height();
+  auto view_pair = [&](const std::string& stem, std::size_t v) {
+    write_pair(stem, w, h, [&](int y, std::uint8_t* rgb) { views.display_row(v, y, rgb); },
+               [&](int y, float* rgb) { views.linear_row(v, y, rgb); });
+  };
 
   if (kind_ == display::ViewSetKind::Single) {
-    write_pair(single, images.display.front(), images.linear.front());
+    view_pair(single, 0);
     return written;
   }
 
-  if (kind_ == display::ViewSetKind::Stereo) {
-    write_pair(atlas_name(tag, ""),
-               to_image(display::side_by_side(rgb_view(images.display[0]), rgb_view(images.display[1]))),
-               to_image(display::side_by_side(rgb_view(images.linear[0]), rgb_view(images.linear[1]))));
-  } else {
-    const std::vector<display::ConstRgbView> display_views = rgb_views(images.display);
-    const display::RgbImage display_quilt = display::compose_quilt(display_views, layout_);
-    const std::vector<display::ConstRgbView> linear_views = rgb_views(images.linear);
-    write_pair(atlas_name(tag, ""), to_image(display_quilt),
-               to_image(display::compose_quilt(linear_views, layout_)));
-    if (options_.calibration) {
-      // The panel shows display values, so those are what gets interleaved.
-      const display::RgbImage panel =
-          display::interleave(display_quilt.view(), layout_, static_cast<int>(views_),
-                              display::lenticular_mapping(*options_.calibration));
-      const fs::path png = options_.dir / (tagged(options_.stem, tag) + "_lenticular.png");
-      metrics::write_png(png, to_image(panel));
-      written.push_back(png);
-    }
+  // Stereo is a 2 x 1 atlas (left eye left); light fields and grids are quilts. Pixels no tile
+  // covers are black.
+  const int count = static_cast<int>(views_);
+  const auto atlas_width = std::size_t(layout_.width);
+  write_pair(
+      atlas_name(tag, ""), layout_.width, layout_.height,
+      [&](int y, std::uint8_t* rgb) {
+        std::fill(rgb, rgb + 3 * atlas_width, std::uint8_t{0});
+        display::for_each_tile_in_row(layout_, count, y, [&](int view, int view_row, int x) {
+          views.display_row(std::size_t(view), view_row, rgb + 3 * std::size_t(x));
+        });
+      },
+      [&](int y, float* rgb) {
+        std::fill(rgb, rgb + 3 * atlas_width, 0.0f);
+        display::for_each_tile_in_row(layout_, count, y, [&](int view, int view_row, int x) {
+          views.linear_row(std::size_t(view), view_row, rgb + 3 * std::size_t(x));
+        });
+      });
+
+  if (options_.calibration) {
+    // The panel shows display values, so those are what gets interleaved: the one place the
+    // display quilt is held whole (as linear floats of the display bytes).
+    display::RgbImage quilt(layout_.width, layout_.height);
+    std::vector<std::uint8_t> row(3 * std::size_t(w));
+    for (int y = 0; y < layout_.height; ++y)
+      display::for_each_tile_in_row(layout_, count, y, [&](int view, int view_row, int x) {
+        views.display_row(std::size_t(view), view_row, row.data());
+        float* out = quilt.pixel(x, y);
+        for (std::size_t i = 0; i < row.size(); ++i) out[i] = metrics::srgb8_decode(row[i]);
+      });
+    const display::RgbImage panel = display::interleave(quilt.view(), layout_, count,
+                                                        display::lenticular_mapping(*options_.calibration));
+    const fs::path png = options_.dir / (tagged(options_.stem, tag) + "_lenticular.png");
+    const auto panel_width = std::size_t(panel.width());
+    metrics::write_png_rows(png, panel.width(), panel.height(), [&](int y, std::uint8_t* rgb) {
+      const float* p = panel.pixel(0, y);
+      for (std::size_t i = 0; i < 3 * panel_width; ++i) rgb[i] = metrics::srgb8_encode(p[i]);
+    });
+    written.push_back(png);
   }
 
-  if (options_.per_view) {
-    const int count = static_cast<int>(views_);
-    for (int i = 0; i < count; ++i) {
-      const auto v = static_cast<std::size_t>(i);
-      write_pair(tagged(display::indexed_view_name(i, count), tag), images.display[v],
-                 images.linear[v]);
-    }
-  }
+  if (options_.per_view)
+    for (int i = 0; i < count; ++i)
+      view_pair(tagged(display::indexed_view_name(i, count), tag), std::size_t(i));
   return written;
 }
 

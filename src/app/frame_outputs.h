@@ -16,18 +16,18 @@
 // view_07_0003.png, STEM_0003_lenticular.png. PNGs hold display values, EXRs linear radiance.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "display/calibration.h"
 #include "display/view_set.h"
 #include "metrics/image.h"
-
-namespace ddish::raster {
-struct FrameOutput;
-}
+#include "raster/renderer.h"
 
 namespace ddish::app {
 
@@ -38,16 +38,48 @@ struct OutputOptions {
   std::optional<display::Calibration> calibration;
 };
 
-// One frame's images, one per view in view order, all tile-sized.
-struct FrameImages {
-  std::vector<metrics::Image> linear;
-  // Values whose clamp + sRGB encoding (metrics::write_png) gives the display pixels exactly.
-  std::vector<metrics::Image> display;
+// One frame's views as the writer reads them, a row at a time (row 0 at the top), so that no
+// atlas is ever composed whole: the quilt's rows are gathered from the views as they are encoded.
+class FrameViews {
+ public:
+  virtual ~FrameViews() = default;
+  virtual std::size_t count() const = 0;
+  virtual int width() const = 0;
+  virtual int height() const = 0;
+  virtual void linear_row(std::size_t view, int y, float* rgb) const = 0;         // 3 * width
+  virtual void display_row(std::size_t view, int y, std::uint8_t* rgb) const = 0;  // sRGB bytes
 };
 
-// The rasterizer's read-back views as images (display pixels decoded back to linear so that
-// write_png reproduces the bytes the tone-mapping pass wrote).
-FrameImages frame_images(const raster::FrameOutput& frame);
+// The rasterizer's read-back views: linear radiance and the tone-mapping pass's display bytes.
+class RasterFrameViews final : public FrameViews {
+ public:
+  // Throws std::invalid_argument for no views or views of different sizes.
+  explicit RasterFrameViews(std::span<const raster::ViewImage> views);
+  std::size_t count() const override { return views_.size(); }
+  int width() const override { return views_.front().width; }
+  int height() const override { return views_.front().height; }
+  void linear_row(std::size_t view, int y, float* rgb) const override;
+  void display_row(std::size_t view, int y, std::uint8_t* rgb) const override;
+
+ private:
+  std::span<const raster::ViewImage> views_;
+};
+
+// Linear images with no tone curve (the reference): their display values are the clamped sRGB
+// encoding of the linear values.
+class LinearFrameViews final : public FrameViews {
+ public:
+  // Throws std::invalid_argument for no images or images of different sizes.
+  explicit LinearFrameViews(std::span<const metrics::Image> images);
+  std::size_t count() const override { return images_.size(); }
+  int width() const override { return images_.front().width(); }
+  int height() const override { return images_.front().height(); }
+  void linear_row(std::size_t view, int y, float* rgb) const override;
+  void display_row(std::size_t view, int y, std::uint8_t* rgb) const override;
+
+ private:
+  std::span<const metrics::Image> images_;
+};
 
 class FrameWriter {
  public:
@@ -56,8 +88,9 @@ class FrameWriter {
 
   // Writes the frame; `single` names the file of a single-view set, `tag` (may be empty) is
   // added to the multi-view names. Returns the files written. Throws std::invalid_argument when
-  // the images do not match the set.
-  std::vector<std::filesystem::path> write(const FrameImages& images, const std::string& single,
+  // the views do not match the set. Each file is encoded from rows gathered from the views;
+  // only the lenticular image (with a calibration) composes the display quilt in memory.
+  std::vector<std::filesystem::path> write(const FrameViews& views, const std::string& single,
                                            const std::string& tag) const;
 
   // The quilt (or side-by-side) file name of the set, e.g. "cornell_box_qs8x6a0.75" + extension.

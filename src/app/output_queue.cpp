@@ -7,8 +7,8 @@
 
 namespace ddish::app {
 
-OutputQueue::OutputQueue(const FrameWriter& writer, std::size_t capacity)
-    : writer_(writer), capacity_(capacity == 0 ? 1 : capacity), thread_([this] { work(); }) {}
+OutputQueue::OutputQueue(const FrameWriter& writer, std::size_t waiting)
+    : writer_(writer), waiting_(waiting), thread_([this] { work(); }) {}
 
 OutputQueue::~OutputQueue() {
   {
@@ -23,10 +23,13 @@ void OutputQueue::rethrow_failure() {
   if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
 }
 
-double OutputQueue::push(std::vector<raster::ViewImage> views, std::string single, std::string tag) {
+double OutputQueue::push(std::vector<raster::ViewImage>&& views, std::string single, std::string tag) {
   const auto start = std::chrono::steady_clock::now();
   std::unique_lock lock(mutex_);
-  changed_.wait(lock, [&] { return jobs_.size() < capacity_ || failure_; });
+  // Room: fewer than `waiting` frames queued, and with none allowed to wait, an idle writer.
+  changed_.wait(lock, [&] {
+    return (jobs_.size() + (busy_ ? 1u : 0u) < waiting_ + 1) || failure_;
+  });
   rethrow_failure();
   jobs_.push_back({std::move(views), std::move(single), std::move(tag)});
   lock.unlock();
@@ -54,9 +57,7 @@ void OutputQueue::work() {
     std::vector<std::filesystem::path> files;
     std::exception_ptr failure;
     try {
-      raster::FrameOutput frame;
-      frame.views = std::move(job.views);
-      files = writer_.write(frame_images(frame), job.single, job.tag);
+      files = writer_.write(RasterFrameViews(job.views), job.single, job.tag);
     } catch (...) {
       failure = std::current_exception();
     }

@@ -1,8 +1,9 @@
-// Frames written beside the frame loop. The loop hands each frame's read-back views to a writer
-// thread through a bounded queue and goes on with the next frame; the writer thread converts,
-// composes and encodes them (frame_outputs.h), so encoding a quilt overlaps the next frame's
-// probe update and rasterization. A full queue blocks the loop: no frame is dropped, and at most
-// `capacity` frames wait in memory besides the one being written. The first failed write is
+// Frames written beside the frame loop. The loop hands each frame's read-back views (moved, not
+// copied) to a writer thread and goes on with the next frame; the writer thread encodes them
+// (frame_outputs.h), so encoding a quilt overlaps the next frame's probe update and
+// rasterization. A full queue blocks the loop: no frame is dropped, and at most `waiting` frames
+// wait in memory besides the one being written (0 by default: a frame is handed over when the
+// writer is free, so two frames' images are the most a run holds). The first failed write is
 // rethrown by the next push() or by finish(); frames after it are not written.
 #pragma once
 
@@ -25,7 +26,7 @@ class FrameWriter;
 class OutputQueue {
  public:
   // `writer` is borrowed and must outlive the queue.
-  explicit OutputQueue(const FrameWriter& writer, std::size_t capacity = 1);
+  explicit OutputQueue(const FrameWriter& writer, std::size_t waiting = 0);
   // Writes what is still queued and joins the writer thread (errors are then dropped: call
   // finish() to see them).
   ~OutputQueue();
@@ -34,7 +35,7 @@ class OutputQueue {
 
   // Queues one frame (`single` and `tag` as for FrameWriter::write); blocks while the queue is
   // full. Returns the milliseconds it waited for room.
-  double push(std::vector<raster::ViewImage> views, std::string single, std::string tag);
+  double push(std::vector<raster::ViewImage>&& views, std::string single, std::string tag);
 
   // Waits until every queued frame is written and returns the files written, in frame order.
   // Rethrows the first write failure.
@@ -49,7 +50,7 @@ class OutputQueue {
   void rethrow_failure();  // with mutex_ held
 
   const FrameWriter& writer_;
-  const std::size_t capacity_;
+  const std::size_t waiting_;
   std::mutex mutex_;
   std::condition_variable changed_;
   std::deque<Job> jobs_;

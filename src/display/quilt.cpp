@@ -32,12 +32,18 @@ void compose_quilt(std::span<const ConstRgbView> views, const QuiltLayout& layou
   }
   std::fill(out.data, out.data + 3 * std::size_t(out.width) * std::size_t(out.height), 0.0f);
   const std::size_t row_floats = 3 * static_cast<std::size_t>(layout.tile_width);
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    const TileRect r = layout.tile(static_cast<int>(i));
-    // Views and the atlas both store row 0 at the top, so tiles copy row by row unflipped.
-    for (int y = 0; y < r.height; ++y) {
-      std::copy_n(views[i].pixel(0, y), row_floats, out.pixel(r.x, r.y + y));
-    }
+  for (int y = 0; y < layout.height; ++y)
+    for_each_tile_in_row(layout, static_cast<int>(views.size()), y, [&](int view, int view_row, int x) {
+      std::copy_n(views[std::size_t(view)].pixel(0, view_row), row_floats, out.pixel(x, y));
+    });
+}
+
+void for_each_tile_in_row(const QuiltLayout& layout, int views, int y,
+                          const std::function<void(int view, int view_row, int x)>& at) {
+  // Views and the atlas both store row 0 at the top, so a tile's rows follow unflipped.
+  for (int i = 0; i < views; ++i) {
+    const TileRect r = layout.tile(i);
+    if (y >= r.y && y < r.y + r.height) at(i, y - r.y, r.x);
   }
 }
 

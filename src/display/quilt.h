@@ -4,6 +4,7 @@
 // tools (and metrics::quilt_layout_from_name) split the atlas back into views.
 #pragma once
 
+#include <functional>
 #include <span>
 #include <string>
 
@@ -11,6 +12,13 @@
 #include "display/rgb_image.h"
 
 namespace ddish::display {
+
+// The tiles that atlas row y (row 0 at the top) crosses, in view order: at(view, view_row, x)
+// for each of the first `views` views whose tile holds row y, with the view's row and the tile's
+// left column. Pixels of the row that no such tile covers are not named (they stay black).
+// What compose_quilt and the row-streamed quilt files (app/frame_outputs) are built on.
+void for_each_tile_in_row(const QuiltLayout& layout, int views, int y,
+                          const std::function<void(int view, int view_row, int x)>& at);
 
 // Copies views[i] into tile i of `out` (which must be layout.width × layout.height) and clears
 // every pixel no view covers (unused cells, the spare column/row of a non-divisible atlas).

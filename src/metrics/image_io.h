@@ -7,7 +7,9 @@
 // write_png reads back as the same display values.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 
 #include "metrics/image.h"
 
@@ -23,6 +25,15 @@ void write_exr(const std::filesystem::path& path, const Image& image);
 
 // 8-bit RGB PNG of the display values (clamped to [0, 1], sRGB-encoded, rounded to nearest).
 void write_png(const std::filesystem::path& path, const Image& image);
+
+// The same files from an image produced a row at a time (row 0 at the top), so that a large atlas
+// composed from many views is never held whole: `row(y, out)` fills row y, 3 * width values.
+// Rows are asked for in order, once each. Throws like the writers above, and
+// std::invalid_argument for an empty size.
+using LinearRow = std::function<void(int y, float* rgb)>;
+using DisplayRow = std::function<void(int y, std::uint8_t* rgb)>;  // sRGB-encoded bytes
+void write_exr_rows(const std::filesystem::path& path, int width, int height, const LinearRow& row);
+void write_png_rows(const std::filesystem::path& path, int width, int height, const DisplayRow& row);
 
 // Chooses by extension (case-insensitive): ".exr" -> write_exr, ".png" -> write_png; anything
 // else throws std::invalid_argument.
