@@ -4,7 +4,7 @@
 //                    [--frames N] [--every] [--fps F] [--time T] [--out DIR] [--timings FILE]
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
 //                    [--probe-samples N] [--hysteresis A] [--bounces N] [--msaa 1|4]
-//                    [--sample-shading] [--anisotropy N] [--tonemap linear|filmic] [--no-indirect]
+//                    [--sample-shading] [--view-batch N] [--anisotropy N] [--tonemap linear|filmic] [--no-indirect]
 //                    [--schedule uniform|visibility] [--budget-ms MS] [--max-age N]
 //                    [--blend per-update|per-sample] [--device N] [--seed N]
 //
@@ -78,6 +78,7 @@ struct RenderArgs {
   std::uint32_t msaa = 0;
   bool sample_shading = false;
   int anisotropy = raster::kAutomaticAnisotropy;
+  std::uint32_t view_batch = 0;  // raster::RendererOptions::batch_views
   std::string tonemap = "filmic";
   bool no_indirect = false;
   std::optional<std::uint32_t> device;
@@ -159,6 +160,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   ro.msaa = a.msaa;
   ro.sample_shading = a.sample_shading;
   ro.anisotropy = a.anisotropy;
+  ro.batch_views = a.view_batch;
   ro.tone_curve = raster::parse_tone_curve(a.tonemap);
   ro.probes = !a.no_indirect;
   raster::Renderer renderer(gpu.device(), s, volume, ro);
@@ -276,6 +278,10 @@ Action make_render(CLI::App& root) {
   cmd->add_option("--timings", a->timings, "write per-frame stage milliseconds as JSON here");
   cmd->add_option("--msaa", a->msaa, "samples per pixel (default: 4 where supported, else 1)");
   cmd->add_flag("--sample-shading", a->sample_shading, "shade every MSAA sample");
+  cmd->add_option("--view-batch", a->view_batch,
+                  "views drawn per submission into one reused target; 0: the most whose target "
+                  "fits 256 MiB (fewer means less memory, more submissions)")
+      ->capture_default_str();
   cmd->add_option("--anisotropy", a->anisotropy,
                   "texture anisotropic filtering: maximum 2..16 (clamped to the device), 1 off, "
                   "0 automatic: 8 on GPUs, off on CPU devices (lavapipe, where it can stall a view)")

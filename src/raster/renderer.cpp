@@ -72,6 +72,9 @@ Renderer::Renderer(gpu::Device& device, const scene::Scene& scene, const probes:
       plan_(scene::make_plan(features_)),
       shadow_settings_(shadow_settings(options, plan_)),
       samples_(choose_samples(device, options.msaa)),
+      pass_bytes_(device.info().type == gpu::DeviceType::cpu
+                      ? RendererOptions::kCpuPassBytesPerTriangle * scene.triangle_count()
+                      : 0),
       runner_(device),
       meshes_(device, runner_, scene),
       materials_(device, runner_, scene, plan_.texture_sampling, options.anisotropy),
@@ -179,7 +182,7 @@ std::uint32_t Renderer::batch_size(std::uint32_t width, std::uint32_t height,
     // Per view: MSAA colour (RGBA16F) and depth (D32) samples, the resolve image, the HDR and
     // display readbacks.
     const std::uint64_t per_view =
-        std::uint64_t{width} * height * (std::uint64_t{samples_} * (8 + 4) + 8 + 8 + 4);
+        std::uint64_t{width} * height * (std::uint64_t{samples_} * (8 + 4) + 8 + 8 + 4) + pass_bytes_;
     g = static_cast<std::uint32_t>(std::max<std::uint64_t>(1, RendererOptions::kBatchTargetBytes / per_view));
     const std::uint32_t block = forward_->views_per_pass();
     if (options_.view_method == ViewMethod::multiview && g > block) g -= g % block;
