@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -10,6 +12,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "io/atomic_file.h"
 #include "metrics/color.h"
 
 namespace ddish::metrics {
@@ -28,13 +31,26 @@ bool is_float_type(const OIIO::TypeDesc& t) {
          t.basetype == OIIO::TypeDesc::DOUBLE;
 }
 
+// Whole files only (io/atomic_file.h): the image is encoded into a temporary beside `path`,
+// with the format plugin chosen by `path`'s extension, and renamed when complete.
 void write_spec(const std::filesystem::path& path, const OIIO::ImageSpec& spec,
                 const void* data) {
-  auto out = OIIO::ImageOutput::create(path.string());
-  if (!out)
-    throw std::runtime_error("cannot write " + path.string() + ": " + one_line(OIIO::geterror()));
-  if (!out->open(path.string(), spec) || !out->write_image(spec.format, data) || !out->close())
-    throw std::runtime_error("cannot write " + path.string() + ": " + one_line(out->geterror()));
+  io::write_atomically(path, [&](const std::filesystem::path& temporary) {
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out) throw std::runtime_error(one_line(OIIO::geterror()));
+    errno = 0;
+    if (!out->open(temporary.string(), spec) || !out->write_image(spec.format, data) ||
+        !out->close()) {
+      // The system's reason (a full disk, a size limit) says it best; the plugins' own messages
+      // name the temporary and repeat themselves.
+      const int error = errno;
+      if (error != 0) throw std::runtime_error(std::strerror(error));
+      std::string reason = one_line(out->geterror());
+      for (std::size_t at; (at = reason.find(temporary.string())) != std::string::npos;)
+        reason.replace(at, temporary.string().size(), path.string());
+      throw std::runtime_error(reason.empty() ? "the image writer failed" : reason);
+    }
+  });
 }
 
 }  // namespace
