@@ -19,6 +19,9 @@
 // probes were found inside geometry (never traced or uploaded again).
 // Progress goes to stderr, one line per frame; --timings writes render_timings.h's JSON.
 // With validation on (DDISH_VALIDATION=1) any validation error makes the run exit 1.
+// Ctrl-C / SIGTERM (app/interrupt.h): the frame in progress is finished and written as the
+// last one, --timings has the frames done, and the exit code is 128 + the signal; every file is
+// written whole (io/atomic_file.h), and the output folders are tried before the scene loads.
 #include <sys/resource.h>
 
 #include <algorithm>
