@@ -15,6 +15,8 @@ PACKAGES=(
   libembree-dev libtbb-dev
   # tests, plots
   libgtest-dev libgmock-dev gnuplot-nox python3
+  # fuzzing (scripts/fuzz.sh): clang 14 and its libFuzzer, ASan and UBSan runtimes
+  clang-14 libclang-rt-14-dev
   # silences a broken-target warning in Debian's Imath CMake files (pulled in by OpenImageIO)
   python3-imath
 )

@@ -128,11 +128,17 @@ int run_compare(const CompareArgs& args) {
 Action add_compare(CLI::App& root) {
   auto args = std::make_shared<CompareArgs>();
   CLI::App* cmd = root.add_subcommand(
-      "compare", "PSNR / SSIM (display values), RMSE / relative MSE (linear) against a reference");
-  cmd->add_option("image", args->image, "image file, or directory of per-view images")
+      "compare",
+      "error of IMAGE against REFERENCE (the reference comes second): PSNR and SSIM on display "
+      "values (linear values clamped to [0, 1] and sRGB-encoded), RMSE and relative MSE on "
+      "linear values");
+  cmd->add_option("image", args->image,
+                  "the image to judge: a file, or a directory of per-view images")
       ->required()
       ->check(CLI::ExistingPath);
-  cmd->add_option("reference", args->reference, "reference file or directory (same names)")
+  cmd->add_option("reference", args->reference, 
+                  "the reference (ground truth), second: a file, or a directory with the same "
+                  "names")
       ->required()
       ->check(CLI::ExistingPath);
   cmd->add_flag("--json", args->json, "write the figures as JSON on stdout");

@@ -17,6 +17,7 @@
 
 #include "app/commands.h"
 #include "app/probe_options.h"
+#include "io/atomic_file.h"
 #include "probes/probe_grid.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
@@ -48,6 +49,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
 
 int run_probes(const ProbesArgs& a) {
   check(a);  // before loading: a bad option should not cost a scene load
+  if (!a.out.empty()) io::check_writable_file(a.out);  // nor an output that cannot be written
   auto t0 = std::chrono::steady_clock::now();
   scene::Scene s = scene::load_scene(a.scene);
   const double load_s = seconds_since(t0);

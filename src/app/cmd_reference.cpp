@@ -23,7 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -38,6 +38,7 @@
 #include "app/commands.h"
 #include "app/frame_outputs.h"
 #include "app/view_options.h"
+#include "io/atomic_file.h"
 #include "metrics/errors.h"
 #include "metrics/image.h"
 #include "metrics/image_io.h"
@@ -113,8 +114,7 @@ bool is_power_of_four(int n) {
 
 void write_convergence(const fs::path& path, const std::vector<ConvergencePoint>& points,
                        const metrics::Image& final_image) {
-  std::ofstream csv(path);
-  if (!csv) throw std::runtime_error("cannot write " + path.string());
+  std::ostringstream csv;
   csv << "spp,seconds,rmse,relmse,psnr,ssim\n";
   for (const ConvergencePoint& p : points) {
     metrics::ImageErrors e = metrics::compute_errors(p.image, final_image);
@@ -122,7 +122,7 @@ void write_convergence(const fs::path& path, const std::vector<ConvergencePoint>
         << metrics::format_figure(e.rmse, 8) << ',' << metrics::format_figure(e.relmse, 8) << ','
         << metrics::format_figure(e.psnr, 8) << ',' << metrics::format_figure(e.ssim, 8) << '\n';
   }
-  if (!csv) throw std::runtime_error("cannot write " + path.string());
+  io::write_file_atomically(path, csv.str());
 }
 
 nlohmann::ordered_json view_meta(const scene::View& view, const trace::ReferenceImage& r) {
@@ -143,16 +143,12 @@ int run_reference(const ReferenceArgs& args) {
   if (!choice.single() && !args.convergence.empty())
     throw std::invalid_argument("--convergence measures one view; it cannot be used with --display " +
                                 args.display.display);
+  // Fail before a long load and render, not after them, when the outputs cannot be written.
+  const fs::path out_dir(args.out);
+  io::check_writable_folder(out_dir);
+  if (!args.convergence.empty()) io::check_writable_file(args.convergence);
   const scene::Scene s = scene::load_scene(args.scene);
   const display::ViewSet set = make_frame_views(s, choice, args.display, args.view);
-  fs::path out_dir(args.out);
-  std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec || !fs::is_directory(out_dir))
-    throw std::runtime_error("cannot create output directory " + args.out);
-  // Fail before a long render, not after it, when the curve cannot be written.
-  if (!args.convergence.empty() && !std::ofstream(args.convergence))
-    throw std::runtime_error("cannot write " + args.convergence);
 
   trace::PathOptions path_options;
   path_options.max_bounces = args.bounces;
@@ -222,9 +218,7 @@ int run_reference(const ReferenceArgs& args) {
   meta["nonfinite_samples"] = totals.nonfinite_samples;
   meta["invalid_paths"] = totals.invalid_paths;
   if (set.size() > 1) meta["per_view"] = per_view;
-  std::ofstream meta_file(out_dir / "reference.json");
-  meta_file << meta.dump(2) << '\n';
-  if (!meta_file) throw std::runtime_error("cannot write " + (out_dir / "reference.json").string());
+  io::write_file_atomically(out_dir / "reference.json", meta.dump(2) + '\n');
 
   std::printf("reference: %zu view%s of %dx%d, %d spp%s in %.2f s, %.2f Mrays/s (%llu rays)\n",
               set.size(), set.size() == 1 ? "" : "s", view.width, view.height, totals.spp,
@@ -264,7 +258,9 @@ Action add_reference(CLI::App& root) {
           },
           "SECONDS"));
   cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
-  cmd->add_option("--bounces", args->bounces, "maximum path bounces")
+  cmd->add_option("--bounces", args->bounces, 
+                  "scattering events per camera path, the camera ray's hit counting as one: 0 only "
+                  "emitters and sky seen directly, 1 direct light only, 2 one indirect bounce, ...")
       ->capture_default_str()
       ->check(CLI::Range(0, 1024));
   cmd->add_option("--out", args->out, "output directory")->required();

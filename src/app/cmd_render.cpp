@@ -19,8 +19,14 @@
 // probes were found inside geometry (never traced or uploaded again).
 // Progress goes to stderr, one line per frame; --timings writes render_timings.h's JSON.
 // With validation on (DDISH_VALIDATION=1) any validation error makes the run exit 1.
+// Ctrl-C / SIGTERM (app/interrupt.h): the frame in progress is finished and written as the
+// last one, --timings has the frames done, and the exit code is 128 + the signal; every file is
+// written whole (io/atomic_file.h), and the output folders are tried before the scene loads.
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -36,6 +42,7 @@
 #include "app/commands.h"
 #include "app/frame_loop.h"
 #include "app/frame_outputs.h"
+#include "app/interrupt.h"
 #include "app/output_queue.h"
 #include "app/plan_report.h"
 #include "app/probe_options.h"
@@ -43,6 +50,7 @@
 #include "app/schedule_options.h"
 #include "app/view_options.h"
 #include "display/calibration.h"
+#include "io/atomic_file.h"
 #include "gpu/context.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
@@ -131,6 +139,19 @@ void print_progress(const FrameReport& r, int frames) {
                      : "");
 }
 
+// Lavapipe keeps device memory in memfd files, which a file size limit (RLIMIT_FSIZE) caps too:
+// at the limit the driver's ftruncate fails and its next store to that memory is a SIGBUS.
+void check_file_size_limit(const gpu::DeviceInfo& device) {
+  rlimit limit{};
+  if (device.type != gpu::DeviceType::cpu || ::getrlimit(RLIMIT_FSIZE, &limit) != 0 ||
+      limit.rlim_cur == RLIM_INFINITY)
+    return;
+  throw std::runtime_error(fmt::format(
+      "a file size limit of {} bytes is set (ulimit -f): {} keeps device memory in files under "
+      "that limit and would crash at it; lift the limit or use a GPU",
+      static_cast<unsigned long long>(limit.rlim_cur), device.name));
+}
+
 struct GpuRun {
   FrameLoopResult result;
   bool validation = false;  // the validation layer was on
@@ -154,6 +175,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
 
   GpuRun run;
   gpu::Context gpu({.device_index = a.device});
+  check_file_size_limit(gpu.device().info());
   run.validation = gpu.instance().validation_enabled();
   run.log = gpu.instance().shared_validation();
   raster::RendererOptions ro;
@@ -198,6 +220,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   options.time = a.time;
   options.fps = a.fps;
   options.every = a.every;
+  options.stop = &stop_flag();  // Ctrl-C: this frame is the last one, written whole
   // Without indirect light nothing reads the probes: tracing them would only cost time (and
   // would make a direct-light-only run's frame time meaningless as a baseline).
   options.update_probes = !a.no_indirect;
@@ -224,6 +247,9 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
 int run_render(const RenderArgs& a) {
   check(a);  // before loading: a bad option should not cost a scene load
   const DisplayChoice choice = resolve_display(a.display, a.view);
+  // Nor an output that cannot be written.
+  io::check_writable_folder(a.out);
+  if (!a.timings.empty()) io::check_writable_file(a.timings);
   std::optional<display::Calibration> calibration;
   if (!a.calibration.empty()) calibration = display::load_calibration(a.calibration);
   scene::Scene s = scene::load_scene(a.scene);
@@ -234,11 +260,17 @@ int run_render(const RenderArgs& a) {
                                    .stem = fs::path(a.scene).stem().string(),
                                    .per_view = a.per_view,
                                    .calibration = calibration});
-  std::error_code ec;
-  fs::create_directories(a.out, ec);
-  if (ec || !fs::is_directory(a.out)) throw std::runtime_error("cannot create output directory " + a.out);
 
+  allow_graceful_stop();
   const GpuRun run = render_frames(a, s, placement, choice, first, writer);
+  const std::size_t done = run.result.counts.size();
+  if (run.result.stopped)
+    std::fprintf(stderr, "render: stopped by %s after frame %zu of %d (t=%.3f s): its images are "
+                 "written, %s\n",
+                 stop_signal() == SIGTERM ? "SIGTERM" : "SIGINT", done, a.frames,
+                 a.time + double(done - 1) / a.fps,
+                 a.timings.empty() ? "no later frame was rendered"
+                                   : "--timings has the frames done");
   if (!a.timings.empty()) write_render_timings(a.timings, run.result.timings, run.result.counts, first);
   for (const fs::path& p : run.result.written) std::printf("wrote %s\n", p.string().c_str());
   if (!a.timings.empty()) std::printf("wrote %s\n", a.timings.c_str());
@@ -254,7 +286,7 @@ int run_render(const RenderArgs& a) {
       return 1;
     }
   }
-  return 0;
+  return run.result.stopped ? interrupted_exit_code(stop_signal()) : 0;
 }
 
 Action make_render(CLI::App& root) {

@@ -120,7 +120,8 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
     report.counts.shadows_reused = st.shadows_reused;
     report.counts.forward_passes = st.forward_passes;
     report.counts.tonemap_passes = st.tonemap_passes;
-    const bool last = k + 1 == o.frames;
+    const bool stopping = o.stop && o.stop->load();
+    const bool last = k + 1 == o.frames || stopping;
     if (sink && (o.every || last)) {
       metrics::StageTimer timer(timings, "output");
       for (auto& path : sink(k, frame)) result.written.push_back(std::move(path));
@@ -140,6 +141,10 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
     result.counts.push_back(report.counts);
     report.timings = &result.timings.frames().back();
     if (progress) progress(report);
+    if (stopping) {
+      result.stopped = k + 1 < o.frames;
+      break;
+    }
   }
   return result;
 }

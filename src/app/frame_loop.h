@@ -17,6 +17,7 @@
 // first, full upload of the volume itself. Inactive probes are never traced nor uploaded.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -54,6 +55,9 @@ struct FrameLoopOptions {
   double fps = 30.0;
   bool every = false;             // write every frame, not only the last
   bool update_probes = true;      // false: render with the probes as they are
+  // Checked once per frame, before its output: when raised, the frame is written as the last
+  // one and the loop ends (Ctrl-C, app/interrupt.h). Null: never stops early.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // What a frame did, counted (not timed): the figures that must not grow with the views.
@@ -92,6 +96,7 @@ struct FrameLoopResult {
   metrics::TimingLog timings;
   std::vector<FrameCounts> counts;  // one per frame
   std::vector<std::filesystem::path> written;
+  bool stopped = false;  // ended early by FrameLoopOptions::stop; counts.size() frames were done
 };
 
 // The views of a frame from the scene as posed (a camera node may be animated).

@@ -15,7 +15,11 @@ void add_probe_options(CLI::App& cmd, ProbeArgs& a) {
                  "probe counts X,Y,Z, or auto (default: sidecar counts, else automatic)");
   cmd.add_option("--probe-spacing", a.spacing, "fit the grid to the bounds at this spacing (m)");
   cmd.add_option("--probe-samples", a.samples, "paths per probe per update")->capture_default_str();
-  cmd.add_option("--bounces", a.bounces, "scattering events per probe path")->capture_default_str();
+  cmd.add_option("--bounces", a.bounces,
+                 "scattering events per probe path, the probe ray's first hit counting as one: 0 "
+                 "only emitters and sky seen directly, 1 direct light at the first hit, 2 one "
+                 "indirect bounce more, ...")
+      ->capture_default_str();
   cmd.add_option("--hysteresis", a.hysteresis, "running-average hysteresis in [0, 1)")
       ->capture_default_str();
   cmd.add_option("--sh-order", a.sh_order, "SH order 1..4")->capture_default_str();

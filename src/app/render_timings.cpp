@@ -1,7 +1,8 @@
 #include "app/render_timings.h"
 
-#include <fstream>
 #include <stdexcept>
+
+#include "io/atomic_file.h"
 
 namespace ddish::app {
 
@@ -58,9 +59,7 @@ nlohmann::ordered_json render_timings_json(const metrics::TimingLog& log,
 
 void write_render_timings(const std::filesystem::path& path, const metrics::TimingLog& log,
                           const std::vector<FrameCounts>& counts, const display::ViewSet& set) {
-  std::ofstream out(path);
-  out << render_timings_json(log, counts, set).dump(2) << '\n';
-  if (!out) throw std::runtime_error("cannot write " + path.string());
+  io::write_file_atomically(path, render_timings_json(log, counts, set).dump(2) + '\n');
 }
 
 }  // namespace ddish::app

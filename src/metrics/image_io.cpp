@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -12,6 +13,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "io/atomic_file.h"
 #include "metrics/color.h"
 
 namespace ddish::metrics {
@@ -69,25 +71,34 @@ Image read_image(const std::filesystem::path& path) {
 
 namespace {
 
-// Opens `path` for `spec` and writes it row by row: `fill(y, buffer)` produces row y in the
-// spec's pixel format.
+// Opens a temporary beside `path` for `spec` (the format plugin chosen by `path`'s extension),
+// writes it row by row (`fill(y, buffer)` produces row y in the spec's pixel format) and renames
+// it over `path` when complete (io/atomic_file.h: whole files only).
 void write_rows(const std::filesystem::path& path, const OIIO::ImageSpec& spec,
                 const std::function<void(int, void*)>& fill) {
   if (spec.width <= 0 || spec.height <= 0)
     throw std::invalid_argument("cannot write an empty image to " + path.string());
-  auto out = OIIO::ImageOutput::create(path.string());
-  if (!out)
-    throw std::runtime_error("cannot write " + path.string() + ": " + one_line(OIIO::geterror()));
-  if (!out->open(path.string(), spec))
-    throw std::runtime_error("cannot write " + path.string() + ": " + one_line(out->geterror()));
-  std::vector<std::uint8_t> buffer(spec.scanline_bytes());
-  for (int y = 0; y < spec.height; ++y) {
-    fill(y, buffer.data());
-    if (!out->write_scanline(y, 0, spec.format, buffer.data()))
-      throw std::runtime_error("cannot write " + path.string() + ": " + one_line(out->geterror()));
-  }
-  if (!out->close())
-    throw std::runtime_error("cannot write " + path.string() + ": " + one_line(out->geterror()));
+  io::write_atomically(path, [&](const std::filesystem::path& temporary) {
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out) throw std::runtime_error(one_line(OIIO::geterror()));
+    std::vector<std::uint8_t> buffer(spec.scanline_bytes());
+    errno = 0;
+    bool ok = out->open(temporary.string(), spec);
+    for (int y = 0; ok && y < spec.height; ++y) {
+      fill(y, buffer.data());
+      ok = out->write_scanline(y, 0, spec.format, buffer.data());
+    }
+    if (!ok || !out->close()) {
+      // The system's reason (a full disk, a size limit) says it best; the plugins' own messages
+      // name the temporary and repeat themselves.
+      const int error = errno;
+      if (error != 0) throw std::runtime_error(std::strerror(error));
+      std::string reason = one_line(out->geterror());
+      for (std::size_t at; (at = reason.find(temporary.string())) != std::string::npos;)
+        reason.replace(at, temporary.string().size(), path.string());
+      throw std::runtime_error(reason.empty() ? "the image writer failed" : reason);
+    }
+  });
 }
 
 }  // namespace

@@ -5,6 +5,9 @@
 // JPEG, 8/16-bit TIFF, PPM) hold sRGB-encoded values and are decoded to linear on reading. So an
 // Image is always linear in memory, whichever kind of file it came from, and a PNG written by
 // write_png reads back as the same display values.
+//
+// Writing is atomic (io/atomic_file.h): a file appears under its name complete or not at all;
+// a failure throws std::runtime_error "cannot write PATH: REASON".
 #pragma once
 
 #include <cstdint>

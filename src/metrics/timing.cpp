@@ -5,6 +5,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "io/atomic_file.h"
+
 namespace ddish::metrics {
 
 void FrameTimings::add(std::string_view stage, double ms) {
@@ -109,10 +111,7 @@ TimingLog TimingLog::read(const std::filesystem::path& path) {
 }
 
 void TimingLog::write(const std::filesystem::path& path) const {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write timings to " + path.string());
-  out << to_json().dump(2) << '\n';
-  if (!out) throw std::runtime_error("cannot write timings to " + path.string());
+  io::write_file_atomically(path, to_json().dump(2) + '\n');
 }
 
 }  // namespace ddish::metrics

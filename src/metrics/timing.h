@@ -69,7 +69,8 @@ class TimingLog {
   static TimingLog from_json(const nlohmann::ordered_json& doc);
   static TimingLog read(const std::filesystem::path& path);
 
-  // Writes to_json() to a file (pretty-printed); throws std::runtime_error when it cannot.
+  // Writes to_json() to a file (pretty-printed, whole or not at all: io/atomic_file.h); throws
+  // std::runtime_error when it cannot.
   void write(const std::filesystem::path& path) const;
 
  private:

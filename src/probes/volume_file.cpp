@@ -11,6 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/atomic_file.h"
+
 namespace ddish::probes {
 
 // Fields are copied as they are in memory, and the packer's words are in host order: the
@@ -88,18 +90,12 @@ void write_volume_file(const std::string& path, const ProbeVolume& volume,
   put(header, 52, packed.words_per_probe);
   put(header, 56, std::uint64_t(volume.frame()));
 
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    if (!out) fail(path, "cannot open for writing");
-    out.write(reinterpret_cast<const char*>(header.data()), std::streamsize(header.size()));
-    out.write(reinterpret_cast<const char*>(packed.words.data()), std::streamsize(packed.bytes()));
-    if (!out.flush()) fail(path, "write failed");
-  }
-  const std::string json_path = path + ".json";
-  std::ofstream js(json_path, std::ios::trunc);
-  if (!js) fail(json_path, "cannot open for writing");
-  js << summary(volume, packed).dump(2) << '\n';
-  if (!js.flush()) fail(json_path, "write failed");
+  // Both files whole or not at all (io/atomic_file.h); the volume first, so a summary never
+  // describes a volume that is not there.
+  std::string bytes(header.begin(), header.end());
+  bytes.append(reinterpret_cast<const char*>(packed.words.data()), packed.bytes());
+  io::write_file_atomically(path, bytes);
+  io::write_file_atomically(path + ".json", summary(volume, packed).dump(2) + '\n');
 }
 
 VolumeFile read_volume_file(const std::string& path) {

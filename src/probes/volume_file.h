@@ -44,8 +44,9 @@ struct VolumeFile {
   ProbeVolume to_volume() const;
 };
 
-// Writes the volume's packed form to `path` and its summary to `path` + ".json". Throws
-// std::runtime_error naming the file when it cannot be written.
+// Writes the volume's packed form to `path` and its summary to `path` + ".json", each whole or
+// not at all (io/atomic_file.h). Throws std::runtime_error naming the file when it cannot be
+// written.
 void write_volume_file(const std::string& path, const ProbeVolume& volume,
                        const PackedVolume& packed);
 

@@ -1,0 +1,8 @@
+// glTF 2.0 text (.gltf, buffers as data URIs) through the loader, the scene model and
+// SceneFeatures (fuzz_scene.h).
+#include "fuzz_scene.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  fuzz::load_scene_file(data, size, "input.gltf");
+  return 0;
+}
