@@ -106,6 +106,7 @@ std::vector<std::uint8_t> encode_frame(const FrameHeader& h, std::span<const std
   w.u16(0);
   for (std::uint32_t c : h.counts) w.u32(c);
   w.u64(h.scene_id);
+  w.u64(h.stream_id);
   w.u64(h.frame);
   w.u64(h.base_frame);
   w.i64(h.server_time_us);
@@ -154,6 +155,7 @@ bool peek_header(std::span<const std::uint8_t> message, FrameHeader& h) {
   h.zstd = (flags & kFrameFlagZstd) != 0;
   for (std::uint32_t& c : h.counts) r.u32(c);
   r.u64(h.scene_id);
+  r.u64(h.stream_id);
   r.u64(h.frame);
   r.u64(h.base_frame);
   r.i64(h.server_time_us);
@@ -183,6 +185,7 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
   r.u16(reserved);
   for (std::uint32_t& c : h.counts) r.u32(c);
   r.u64(h.scene_id);
+  r.u64(h.stream_id);
   r.u64(h.frame);
   r.u64(h.base_frame);
   r.i64(h.server_time_us);

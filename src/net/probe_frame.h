@@ -1,4 +1,4 @@
-// One message of the probe stream: a fixed 80-byte header and a payload of probe indices and
+// One message of the probe stream: a fixed 88-byte header and a payload of probe indices and
 // coefficients (docs/protocol.md is the full description). Little-endian, no padding:
 //   offset size field
 //        0    4 magic "DDPF"
@@ -9,17 +9,19 @@
 //        9    1 u8 flags: bit 0 payload compressed with zstd; other bits zero
 //       10    2 u16 reserved, zero
 //       12   12 u32 grid counts x, y, z (>= 1, product <= 2^24)
-//       24    8 u64 scene identity (geometry and probe grid; scene_identity.h)
-//       32    8 u64 server frame: the server's probe update this message carries
-//       40    8 u64 base frame: a delta applies to a client holding this frame; a keyframe's
-//                   base frame is its own frame
-//       48    8 i64 server time, microseconds of the server's steady clock, when this frame's
+//       24    8 u64 scene identity (geometry and probe grid, app/scene_identity.h)
+//       32    8 u64 stream: drawn at random when a server starts, so a restarted server's
+//                   frames are never taken for the old one's
+//       40    8 u64 server frame: the server's probe update this message carries
+//       48    8 u64 base frame: a delta applies to a client holding this frame of this
+//                   stream; a keyframe's base frame is its own frame
+//       56    8 i64 server time, microseconds of the server's steady clock, when this frame's
 //                   probe update ended
-//       56    8 f64 scene time, seconds (the animation clock)
-//       64    4 u32 updated probes (coefficients in this message)
-//       68    4 u32 deactivated probes (deltas only: probes that became inactive)
-//       72    4 u32 payload bytes as sent (after the header; the message is exactly 80 + this)
-//       76    4 u32 payload bytes uncompressed (equal to the above without zstd)
+//       64    8 f64 scene time, seconds (the animation clock)
+//       72    4 u32 updated probes (coefficients in this message)
+//       76    4 u32 deactivated probes (deltas only: probes that became inactive)
+//       80    4 u32 payload bytes as sent (after the header; the message is exactly 88 + this)
+//       84    4 u32 payload bytes uncompressed (equal to the above without zstd)
 //   payload: updated probe indices, then deactivated probe indices, each an increasing list
 //   sent as LEB128 varints of the gaps (first index, then index - previous - 1); one flag byte
 //   per deactivated probe (bit 0 set, bit 1 inside geometry, nothing else); the updated probes'
@@ -39,7 +41,7 @@ namespace ddish::net {
 
 inline constexpr char kFrameMagic[4] = {'D', 'D', 'P', 'F'};
 inline constexpr std::uint16_t kProtocolVersion = 1;
-inline constexpr std::size_t kFrameHeaderBytes = 80;
+inline constexpr std::size_t kFrameHeaderBytes = 88;
 inline constexpr std::uint32_t kMaxGridProbes = 1u << 24;  // probes::ProbeGrid::kMaxProbes
 inline constexpr std::uint8_t kFrameFlagZstd = 1u << 0;
 // Deactivated probes' flag byte (the bits of probes::ProbeFlag): inactive, inside geometry.
@@ -55,6 +57,7 @@ struct FrameHeader {
   bool zstd = false;
   std::uint32_t counts[3] = {1, 1, 1};
   std::uint64_t scene_id = 0;
+  std::uint64_t stream_id = 0;
   std::uint64_t frame = 0;
   std::uint64_t base_frame = 0;
   std::int64_t server_time_us = 0;

@@ -31,7 +31,7 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
   if (!matches(f.header)) return ApplyOutcome::kSceneMismatch;
   const std::size_t n = std::size_t(volume_.coefficient_count());
   if (f.header.kind == FrameKind::kKeyframe) {
-    if (synced_ && f.header.frame <= frame_) return ApplyOutcome::kOld;
+    if (synced_ && f.header.stream_id == stream_ && f.header.frame <= frame_) return ApplyOutcome::kOld;
     std::size_t next = 0;
     for (std::uint32_t i = 0; i < volume_.probe_count(); ++i) {
       if (next < f.updated.size() && f.updated[next] == i) {
@@ -43,7 +43,7 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
       changed.push_back(i);
     }
   } else {
-    if (!synced_) return ApplyOutcome::kGap;
+    if (!synced_ || f.header.stream_id != stream_) return ApplyOutcome::kGap;
     if (f.header.frame <= frame_) return ApplyOutcome::kOld;
     if (f.header.base_frame != frame_) return ApplyOutcome::kGap;
     for (std::size_t k = 0; k < f.updated.size(); ++k)
@@ -55,6 +55,7 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
   }
   synced_ = true;
   frame_ = f.header.frame;
+  stream_ = f.header.stream_id;
   return ApplyOutcome::kApplied;
 }
 

@@ -4,7 +4,8 @@
 // probe inactive); a delta applies only to the frame it was made from (its base frame), so a
 // client never mixes states: an older frame is dropped (the Clone pattern's "updates older than
 // the snapshot"), and a delta from a frame the client does not hold says that a snapshot is
-// needed. Frames of another scene or grid are never applied.
+// needed. A keyframe of another stream (a restarted server) replaces the state whatever its frame
+// number; a delta of another stream is a gap. Frames of another scene or grid are never applied.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +35,7 @@ class ProbeMirror {
   // Whether a keyframe has been applied, and the server frame held (valid once synced).
   bool synced() const { return synced_; }
   std::uint64_t frame() const { return frame_; }
+  std::uint64_t stream() const { return stream_; }
   // Forgets the held frame, keeping the probes (after a lost server: the next keyframe,
   // whatever its frame number, is taken).
   void desync() { synced_ = false; }
@@ -46,6 +48,7 @@ class ProbeMirror {
   std::uint64_t scene_id_;
   bool synced_ = false;
   std::uint64_t frame_ = 0;
+  std::uint64_t stream_ = 0;
 };
 
 }  // namespace ddish::net

@@ -7,7 +7,7 @@
 namespace ddish::net {
 
 PublishedProbes::PublishedProbes(const probes::ProbeGrid& grid, int sh_order, std::uint64_t scene_id,
-                                 const StreamOptions& options)
+                                 std::uint64_t stream_id, const StreamOptions& options)
     : options_(options),
       coefficient_count_((sh_order + 1) * (sh_order + 1)),
       probe_bytes_(std::size_t(probe_bytes(options.encoding, sh_order))) {
@@ -19,6 +19,7 @@ PublishedProbes::PublishedProbes(const probes::ProbeGrid& grid, int sh_order, st
   header_.counts[1] = std::uint32_t(grid.counts().y);
   header_.counts[2] = std::uint32_t(grid.counts().z);
   header_.scene_id = scene_id;
+  header_.stream_id = stream_id;
   const std::size_t probes = grid.probe_count();
   held_.assign(probes, 0);
   held_bytes_.assign(probes * probe_bytes_, 0);

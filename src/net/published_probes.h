@@ -41,8 +41,9 @@ struct PublishStats {
 
 class PublishedProbes {
  public:
+  // stream_id: this server run's (probe_frame.h), drawn at random at start.
   PublishedProbes(const probes::ProbeGrid& grid, int sh_order, std::uint64_t scene_id,
-                  const StreamOptions& options);
+                  std::uint64_t stream_id, const StreamOptions& options);
 
   // Frame `frame` (> the last published one): the delta from the last published frame to
   // `volume` (same grid and order). server_time_us: when its probe update ended.

@@ -22,6 +22,7 @@ ProbeFrame sample_frame(Encoding encoding, bool zstd, FrameKind kind = FrameKind
   f.header.zstd = zstd;
   f.header.counts[0] = 4, f.header.counts[1] = 3, f.header.counts[2] = 2;  // 24 probes
   f.header.scene_id = 0x1234567890abcdefull;
+  f.header.stream_id = 0x5eed;
   f.header.frame = 42;
   f.header.base_frame = kind == FrameKind::kDelta ? 41 : 42;
   f.header.server_time_us = 987654321;
@@ -51,6 +52,7 @@ TEST(Frame, RoundTripEveryEncodingAndCompression) {
         EXPECT_EQ(h.encoding, Encoding(e));
         EXPECT_EQ(h.zstd, zstd);
         EXPECT_EQ(h.scene_id, f.header.scene_id);
+        EXPECT_EQ(h.stream_id, f.header.stream_id);
         EXPECT_EQ(h.frame, f.header.frame);
         EXPECT_EQ(h.base_frame, f.header.base_frame);
         EXPECT_EQ(h.server_time_us, f.header.server_time_us);
@@ -64,7 +66,7 @@ TEST(Frame, RoundTripEveryEncodingAndCompression) {
           for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(r.frame.coefficients[j][c], f.coefficients[j][c],
                         0.0178f * f.coefficients[j - j % 9][c] + 1e-6f);
-        if (!zstd) {  // 80 header + 7 + 2 index bytes + 2 flags + probes
+        if (!zstd) {  // 88 header + 7 + 2 index bytes + 2 flags + probes
           EXPECT_EQ(bytes.size(), kFrameHeaderBytes + (kind == FrameKind::kDelta ? 11u : 7u) +
                                       7u * std::size_t(probe_bytes(Encoding(e), 2)));
         }
@@ -107,7 +109,7 @@ void expect_reject(const std::vector<std::uint8_t>& m, RejectKind kind) {
 
 TEST(FrameReject, Truncated) {
   std::vector<std::uint8_t> m = good_message();
-  expect_reject({m.begin(), m.begin() + 79}, RejectKind::kTruncated);
+  expect_reject({m.begin(), m.begin() + 87}, RejectKind::kTruncated);
   expect_reject({}, RejectKind::kTruncated);
   for (std::size_t cut = kFrameHeaderBytes; cut < m.size(); cut += 7)
     expect_reject({m.begin(), m.begin() + std::ptrdiff_t(cut)}, RejectKind::kTruncated);
@@ -141,10 +143,10 @@ TEST(FrameReject, BadHeaderFields) {
   put32(m, 12, 1u << 12), put32(m, 16, 1u << 12), put32(m, 20, 2);  // 2^25 probes
   expect_reject(m, RejectKind::kBadHeader);
   m = good_message();
-  put64(m, 40, 42);  // a delta whose base is its own frame
+  put64(m, 48, 42);  // a delta whose base is its own frame
   expect_reject(m, RejectKind::kBadHeader);
   m = good_message();
-  put64(m, 56, 0x7ff8000000000000ull);  // NaN scene time
+  put64(m, 64, 0x7ff8000000000000ull);  // NaN scene time
   expect_reject(m, RejectKind::kBadHeader);
 }
 
@@ -153,17 +155,17 @@ TEST(FrameReject, SizeMismatch) {
   m.push_back(0);  // a byte after the payload
   expect_reject(m, RejectKind::kSizeMismatch);
   m = good_message();
-  put32(m, 64, 25);  // more updated probes than the grid holds
+  put32(m, 72, 25);  // more updated probes than the grid holds
   expect_reject(m, RejectKind::kSizeMismatch);
   m = good_message();
-  put32(m, 64, 6);  // one probe fewer than the payload carries
+  put32(m, 72, 6);  // one probe fewer than the payload carries
   expect_reject(m, RejectKind::kSizeMismatch);
   m = good_message();
-  put32(m, 76, 5000);  // uncompressed size unlike the payload's
+  put32(m, 84, 5000);  // uncompressed size unlike the payload's
   expect_reject(m, RejectKind::kSizeMismatch);
   ProbeFrame key = sample_frame(Encoding::kHalf, false, FrameKind::kKeyframe);
   m = encode_frame(key);
-  put32(m, 68, 1);  // a keyframe announcing a deactivated probe
+  put32(m, 76, 1);  // a keyframe announcing a deactivated probe
   expect_reject(m, RejectKind::kSizeMismatch);
   DecodeLimits tight;
   tight.max_payload_bytes = 100;

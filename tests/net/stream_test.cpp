@@ -39,7 +39,7 @@ DecodeResult decode_ok(const std::vector<std::uint8_t>& m) {
 TEST(Stream, StaticVolumeSendsOnceThenHeadersOnly) {
   std::mt19937_64 rng(1);
   probes::ProbeVolume server = make_volume(rng);
-  PublishedProbes pub(server.grid(), 2, kScene, {.encoding = Encoding::kCompact, .threshold = 0.01f});
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {.encoding = Encoding::kCompact, .threshold = 0.01f});
   PublishStats s;
   const auto first = pub.publish(server, 1, 100, 0.0, &s);
   EXPECT_EQ(s.sent, 64u);
@@ -60,7 +60,7 @@ TEST(Stream, ThresholdBoundsTheClientError) {
   probes::ProbeVolume client = client_volume();
   ProbeMirror mirror(client, kScene);
   const float threshold = 0.02f;
-  PublishedProbes pub(server.grid(), 2, kScene, {.encoding = Encoding::kHalf, .threshold = threshold});
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {.encoding = Encoding::kHalf, .threshold = threshold});
   std::normal_distribution<float> noise(0.0f, 0.004f);
   std::uint64_t sent = 0, held_back = 0;
   std::vector<std::uint32_t> changed;
@@ -91,7 +91,7 @@ TEST(Stream, LateJoinerHoldsWhatEveryoneHolds) {
   probes::ProbeVolume server = make_volume(rng);
   probes::ProbeVolume early = client_volume(), late = client_volume();
   ProbeMirror early_mirror(early, kScene), late_mirror(late, kScene);
-  PublishedProbes pub(server.grid(), 2, kScene, {.encoding = Encoding::kCompact, .zstd = true, .threshold = 0.01f});
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {.encoding = Encoding::kCompact, .zstd = true, .threshold = 0.01f});
   std::vector<std::uint32_t> changed;
   ASSERT_EQ(early_mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
   std::normal_distribution<float> noise(0.0f, 0.01f);
@@ -119,7 +119,7 @@ TEST(Stream, InactiveProbesAreAnnouncedOnceAndNeverSent) {
   probes::ProbeVolume server = make_volume(rng);
   server.deactivate(5, true);
   server.state(9).updates = 0;  // active, never traced: nothing to say
-  PublishedProbes pub(server.grid(), 2, kScene, {});
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {});
   probes::ProbeVolume client = client_volume();
   ProbeMirror mirror(client, kScene);
   std::vector<std::uint32_t> changed;
@@ -149,7 +149,7 @@ TEST(Stream, InactiveProbesAreAnnouncedOnceAndNeverSent) {
 TEST(Mirror, OldGapAndOtherSceneFrames) {
   std::mt19937_64 rng(5);
   probes::ProbeVolume server = make_volume(rng);
-  PublishedProbes pub(server.grid(), 2, kScene, {});
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {});
   probes::ProbeVolume client = client_volume();
   ProbeMirror mirror(client, kScene);
   std::vector<std::uint32_t> changed;
@@ -161,12 +161,20 @@ TEST(Mirror, OldGapAndOtherSceneFrames) {
   pub.publish(server, 2, 0, 0.0);  // lost
   EXPECT_EQ(mirror.apply(decode_ok(pub.publish(server, 3, 0, 0.0)).frame, changed), ApplyOutcome::kGap);
   // Another scene, another grid.
-  PublishedProbes other(server.grid(), 2, kScene + 1, {});
+  PublishedProbes other(server.grid(), 2, kScene + 1, 1, {});
   EXPECT_EQ(mirror.apply(decode_ok(other.snapshot()).frame, changed), ApplyOutcome::kSceneMismatch);
   probes::ProbeVolume coarse(probes::ProbeGrid(scene::Aabb{glm::vec3(0.0f), glm::vec3(4.0f)}, {2, 4, 8}), 2);
-  PublishedProbes regridded(coarse.grid(), 2, kScene, {});
+  PublishedProbes regridded(coarse.grid(), 2, kScene, 1, {});
   EXPECT_EQ(mirror.apply(decode_ok(regridded.snapshot()).frame, changed), ApplyOutcome::kSceneMismatch);
   EXPECT_EQ(mirror.frame(), 1u);
+  // A restarted server (another stream): its delta is a gap, its keyframe is taken although
+  // its frame number is lower.
+  PublishedProbes restarted(server.grid(), 2, kScene, 2, {});
+  restarted.publish(server, 1, 0, 0.0);
+  EXPECT_EQ(mirror.apply(decode_ok(restarted.publish(server, 2, 0, 0.0)).frame, changed), ApplyOutcome::kGap);
+  EXPECT_EQ(mirror.apply(decode_ok(restarted.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(mirror.stream(), 2u);
+  EXPECT_EQ(mirror.frame(), 2u);
 }
 
 }  // namespace
