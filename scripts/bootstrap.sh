@@ -13,6 +13,8 @@ PACKAGES=(
   libcli11-dev libspdlog-dev libfmt-dev libzstd-dev libmeshoptimizer-dev
   # ray tracing and threads
   libembree-dev libtbb-dev
+  # probe stream (src/net): ZeroMQ with CURVE, its C++ binding; clang/libFuzzer for its fuzz target
+  libzmq3-dev cppzmq-dev clang-14 libclang-rt-14-dev
   # tests, plots
   libgtest-dev libgmock-dev gnuplot-nox python3
   # silences a broken-target warning in Debian's Imath CMake files (pulled in by OpenImageIO)
