@@ -20,13 +20,15 @@
 // Progress goes to stderr, one line per frame; --timings writes render_timings.h's JSON.
 // With validation on (DDISH_VALIDATION=1) any validation error makes the run exit 1.
 //
-// ddish view SCENE --connect tcp://HOST:PORT [--probes FILE] [--wait-ms MS] [--stale-ms MS]
+// ddish view SCENE --connect tcp://HOST:PORT [--probes FILE] [--wait-ms MS] [--frame-wait-ms MS]
+//                  [--stale-ms MS] [--curve-server-key FILE --curve-secret FILE]
 //                  [every option of render but the probe update's and the schedule's]
 // is the same loop with the probe stream's client as its probe source (remote_probes.h): the
 // probes come from a `ddish serve` of the same scene and probe grid (checked by the scene
 // identity, scene_identity.h), the views go upstream to its scheduler. Without a server at start
 // it renders with --probes FILE (a volume of `ddish probes --out`), else with direct light only,
-// and says which; a lost server leaves the last probes in place.
+// and says which; a lost server leaves the last probes in place. With --curve-server-key (the
+// server's .pub) and --curve-secret (this client's .key) it speaks CurveZMQ.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -51,6 +53,8 @@
 #include "app/schedule_options.h"
 #include "app/view_options.h"
 #include "display/calibration.h"
+#include "net/curve_keys.h"
+#include "net/endpoint.h"
 #include "gpu/context.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
@@ -95,6 +99,9 @@ struct RenderArgs {
   std::string baked;     // --probes FILE: the probes until a server answers
   int wait_ms = 2000;    // frame 0's wait for the server's snapshot
   int stale_ms = 1000;   // no message for this long: the server is lost
+  int frame_wait_ms = 0;  // later frames' wait for the server's next frame
+  std::string curve_server_key;  // the server's .pub
+  std::string curve_secret;      // this client's .key
   const char* tag() const { return connect.empty() ? "render" : "view"; }
 };
 
@@ -104,7 +111,11 @@ void check(const RenderArgs& a) {
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
   if (a.frames < 1) throw std::invalid_argument("--frames must be at least 1");
-  if (a.wait_ms < 0 || a.stale_ms < 1) throw std::invalid_argument("--wait-ms must be >= 0 and --stale-ms >= 1");
+  if (a.wait_ms < 0 || a.frame_wait_ms < 0 || a.stale_ms < 1)
+    throw std::invalid_argument("--wait-ms and --frame-wait-ms must be >= 0, --stale-ms >= 1");
+  if (!a.connect.empty()) net::parse_endpoint(a.connect);  // throws with the reason
+  if (a.curve_server_key.empty() != a.curve_secret.empty())
+    throw std::invalid_argument("--curve-server-key and --curve-secret go together");
   if (!(a.fps > 0.0)) throw std::invalid_argument("--fps must be positive");
   if (a.msaa != 0 && a.msaa != 1 && a.msaa != 2 && a.msaa != 4 && a.msaa != 8 && a.msaa != 16)
     throw std::invalid_argument(fmt::format("--msaa must be 1, 2, 4, 8 or 16, got {}", a.msaa));
@@ -256,7 +267,11 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     co.connect = a.connect;
     co.stale_ms = a.stale_ms;
     co.log = [](const std::string& line) { std::fprintf(stderr, "view: %s\n", line.c_str()); };
-    auto remote_probes = std::make_unique<RemoteProbes>(co, volume, identity, a.wait_ms);
+    if (!a.curve_secret.empty()) {
+      const net::CurveKeyPair mine = net::read_secret_key(a.curve_secret);
+      co.curve = net::CurveClientKeys{net::read_public_key(a.curve_server_key), mine.public_z85, mine.secret_z85};
+    }
+    auto remote_probes = std::make_unique<RemoteProbes>(co, volume, identity, a.wait_ms, a.frame_wait_ms);
     std::fprintf(stderr, "view: probes from %s (scene identity %016llx)\n", a.connect.c_str(),
                  static_cast<unsigned long long>(identity));
     probes = std::move(remote_probes);
@@ -375,8 +390,15 @@ Action make_view(CLI::App& root) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--wait-ms", a->wait_ms, "how long the first frame waits for the server's snapshot")
       ->capture_default_str();
+  cmd->add_option("--frame-wait-ms", a->frame_wait_ms,
+                  "each later frame waits up to this long for the server's next frame (0: takes what arrived)")
+      ->capture_default_str();
   cmd->add_option("--stale-ms", a->stale_ms, "no message from the server for this long: it is lost")
       ->capture_default_str();
+  cmd->add_option("--curve-server-key", a->curve_server_key, "the server's public key (.pub): CurveZMQ on")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--curve-secret", a->curve_secret, "this client's secret key (.key of ddish keys)")
+      ->check(CLI::ExistingFile);
   // The probe placement must be the server's (the scene identity covers it).
   cmd->add_option("--grid", a->probe.grid,
                   "probe counts X,Y,Z, or auto, as the server's (default: sidecar counts, else automatic)");

@@ -1,6 +1,7 @@
 // ddish serve SCENE [--bind tcp://127.0.0.1:PORT] [--insecure] [--fps F] [--frames N]
 //                   [--seconds S] [--time T] [--encoding fp16|shared-exponent|compact] [--zstd]
 //                   [--delta-threshold R] [--delta-floor A] [--client-timeout-ms MS]
+//                   [--curve-secret FILE --allow-keys DIR]
 //                   [--timings FILE.json] [probe options] [schedule options]
 //
 // The probe server: the frame loop's in-process probe source (probe_source.h) with the probe
@@ -13,13 +14,16 @@
 // instead makes N updates whatever the clients, then serves their result. --seconds S stops it
 // after S seconds, SIGINT / SIGTERM at once; either way --timings is written (per tick: whether
 // it updated, probe ms, probes traced / sent / deactivated / held back, bytes, clients).
-// It binds loopback unless told otherwise; a non-loopback --bind needs --insecure (no keys).
+// It binds loopback unless told otherwise; a non-loopback --bind needs keys or --insecure. With
+// --curve-secret (the server's .key of `ddish keys`) and --allow-keys (a folder of clients' .pub
+// files) both sockets speak CurveZMQ and a ZAP handler refuses every client key not listed.
 #include <chrono>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -34,6 +38,7 @@
 #include "app/probe_source.h"
 #include "app/scene_identity.h"
 #include "app/schedule_options.h"
+#include "net/curve_keys.h"
 #include "net/endpoint.h"
 #include "net/probe_server.h"
 #include "net/published_probes.h"
@@ -67,6 +72,8 @@ struct ServeArgs {
   float floor = 0.0f;
   int client_timeout_ms = 2000;
   std::string timings;
+  std::string curve_secret;
+  std::string allow_keys;
 };
 
 void check(const ServeArgs& a) {
@@ -79,10 +86,12 @@ void check(const ServeArgs& a) {
   if (!(a.threshold >= 0.0f) || !(a.floor >= 0.0f))
     throw std::invalid_argument("--delta-threshold and --delta-floor must be >= 0");
   if (a.client_timeout_ms < 1) throw std::invalid_argument("--client-timeout-ms must be >= 1");
+  if (a.curve_secret.empty() != a.allow_keys.empty())
+    throw std::invalid_argument("--curve-secret and --allow-keys go together");
   const net::Endpoint e = net::parse_endpoint(a.bind);
-  if (!e.loopback() && !a.insecure)
+  if (!e.loopback() && !a.insecure && a.curve_secret.empty())
     throw std::invalid_argument("--bind " + a.bind +
-                                " is not a loopback address: serving it without keys needs --insecure");
+                                " is not a loopback address: serving it needs --curve-secret and --allow-keys, or --insecure");
 }
 
 struct TickRecord {
@@ -158,9 +167,17 @@ int run_serve(const ServeArgs& a) {
   so.threshold = a.threshold;
   so.floor = a.floor;
   net::PublishedProbes published(placement.grid, a.probe.sh_order, identity, stream, so);
+  std::optional<net::CurveServerKeys> curve;
+  if (!a.curve_secret.empty())
+    curve = net::CurveServerKeys{net::read_secret_key(a.curve_secret).secret_z85,
+                                 net::read_allowed_keys(a.allow_keys)};
   net::ProbeServer server({.bind = a.bind,
                            .client_timeout_ms = a.client_timeout_ms,
-                           .log = [](const std::string& line) { std::fprintf(stderr, "serve: %s\n", line.c_str()); }});
+                           .log = [](const std::string& line) { std::fprintf(stderr, "serve: %s\n", line.c_str()); },
+                           .curve = curve});
+  if (curve)
+    std::fprintf(stderr, "serve: CurveZMQ, %zu client keys allowed (%s)\n", curve->allowed_z85.size(),
+                 a.allow_keys.c_str());
   const net::Endpoint endpoint = net::parse_endpoint(a.bind);
   const auto& g = placement.grid;
   std::fprintf(stderr,
@@ -250,6 +267,10 @@ Action make_serve(CLI::App& root) {
   cmd->add_option("--client-timeout-ms", a->client_timeout_ms, "a client silent for this long stops counting")
       ->capture_default_str();
   cmd->add_option("--timings", a->timings, "write a per-tick record as JSON here");
+  cmd->add_option("--curve-secret", a->curve_secret, "the server's secret key (ddish keys): CurveZMQ on")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--allow-keys", a->allow_keys, "folder of the client public keys (.pub) the server admits")
+      ->check(CLI::ExistingDirectory);
   return [a]() { return run_serve(*a); };
 }
 

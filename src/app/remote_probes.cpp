@@ -3,8 +3,11 @@
 namespace ddish::app {
 
 RemoteProbes::RemoteProbes(const net::ClientOptions& options, probes::ProbeVolume& volume,
-                           std::uint64_t scene_id, int first_wait_ms)
-    : volume_(volume), client_(options, volume, scene_id), first_wait_ms_(first_wait_ms) {}
+                           std::uint64_t scene_id, int first_wait_ms, int frame_wait_ms)
+    : volume_(volume),
+      client_(options, volume, scene_id),
+      first_wait_ms_(first_wait_ms),
+      frame_wait_ms_(frame_wait_ms) {}
 
 ProbeStep RemoteProbes::update(const std::vector<scene::View>& views, bool enabled,
                                metrics::FrameTimings& timings, FrameCounts& counts) {
@@ -13,7 +16,7 @@ ProbeStep RemoteProbes::update(const std::vector<scene::View>& views, bool enabl
   if (enabled) {
     metrics::StageTimer timer(timings, "probe_receive");
     client_.send_views(views);
-    const net::ClientPoll poll = client_.poll(first_ ? first_wait_ms_ : 0);
+    const net::ClientPoll poll = client_.poll(first_ ? first_wait_ms_ : frame_wait_ms_);
     step.changed = poll.changed;
     stream.bytes_received = poll.bytes;
     stream.frames_applied = poll.frames_applied;

@@ -3,7 +3,8 @@
 // published since the last frame, and hands the probes that changed to the upload. Frame 0
 // waits up to `first_wait_ms` for the server's snapshot; without one the volume keeps what it
 // was made with (baked probes, or nothing: direct light only) and later frames take the
-// snapshot whenever the server appears. A lost server leaves the probes as they were.
+// snapshot whenever the server appears. Every later frame waits up to `frame_wait_ms` for the
+// server's next frame (0: takes what has arrived), which paces a client to its server's ticks. A lost server leaves the probes as they were.
 // Per frame it records the stream's figures (FrameCounts::stream): the server frame held,
 // stale_ms, the age of the held probes at the hand-over (server trace end -> now, through the
 // clock offset of the snapshot replies), bytes and frames received, rejected messages.
@@ -22,7 +23,7 @@ class RemoteProbes final : public ProbeSource {
  public:
   // `volume` (borrowed) holds the starting probes; scene_id: this scene's identity.
   RemoteProbes(const net::ClientOptions& options, probes::ProbeVolume& volume,
-               std::uint64_t scene_id, int first_wait_ms);
+               std::uint64_t scene_id, int first_wait_ms, int frame_wait_ms);
 
   probes::ProbeVolume& volume() override { return volume_; }
   void posed(const scene::Scene&, const std::vector<int>&, metrics::FrameTimings&) override {}
@@ -37,6 +38,7 @@ class RemoteProbes final : public ProbeSource {
   probes::ProbeVolume& volume_;
   net::ProbeClient client_;
   int first_wait_ms_;
+  int frame_wait_ms_;
   bool first_ = true;
   probes::BudgetController no_budget_{probes::BudgetOptions{}};
 };

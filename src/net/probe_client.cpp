@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 #include <set>
 
 #include <fmt/format.h>
@@ -15,6 +16,13 @@
 #include "net/view_message.h"
 
 namespace ddish::net {
+namespace {
+
+bool decode_key(const std::string& z85, std::array<std::uint8_t, 32>& out) {
+  return z85.size() == 40 && zmq_z85_decode(out.data(), z85.c_str()) != nullptr;
+}
+
+}  // namespace
 
 struct ProbeClient::Impl {
   ClientOptions options;
@@ -48,6 +56,17 @@ struct ProbeClient::Impl {
       s->set(zmq::sockopt::heartbeat_ttl, 4 * o.heartbeat_ms);
       s->set(zmq::sockopt::reconnect_ivl, 100);
       s->set(zmq::sockopt::reconnect_ivl_max, 500);
+    }
+    if (o.curve) {
+      std::array<std::uint8_t, 32> server{}, pub{}, secret{};
+      if (!decode_key(o.curve->server_public_z85, server) || !decode_key(o.curve->public_z85, pub) ||
+          !decode_key(o.curve->secret_z85, secret))
+        throw std::runtime_error("a CURVE key of the client is not 40 Z85 characters");
+      for (zmq::socket_t* s : {&subscriber, &requests}) {
+        s->set(zmq::sockopt::curve_serverkey, zmq::buffer(server));
+        s->set(zmq::sockopt::curve_publickey, zmq::buffer(pub));
+        s->set(zmq::sockopt::curve_secretkey, zmq::buffer(secret));
+      }
     }
     subscriber.set(zmq::sockopt::subscribe, "");
     requests.set(zmq::sockopt::immediate, 1);  // no requests queued for a dead connection

@@ -26,12 +26,20 @@
 
 namespace ddish::net {
 
+// CurveZMQ: the server's public key and this client's key pair.
+struct CurveClientKeys {
+  std::string server_public_z85;
+  std::string public_z85;
+  std::string secret_z85;
+};
+
 struct ClientOptions {
   std::string connect = "tcp://127.0.0.1:5570";
   int heartbeat_ms = 250;
   int stale_ms = 1000;          // no message for this long: the server is lost
   int snapshot_retry_ms = 250;  // between snapshot requests while unsynced
   std::function<void(const std::string&)> log;
+  std::optional<CurveClientKeys> curve;  // none: plaintext
 };
 
 struct ClientPoll {

@@ -1,5 +1,6 @@
 #include "net/probe_server.h"
 
+#include <array>
 #include <chrono>
 #include <map>
 #include <set>
@@ -11,6 +12,7 @@
 #include "net/byte_io.h"
 #include "net/endpoint.h"
 #include "net/view_message.h"
+#include "net/zap_handler.h"
 
 namespace ddish::net {
 
@@ -27,6 +29,7 @@ struct ProbeServer::Impl {
   };
   ServerOptions options;
   zmq::context_t context{1};
+  std::unique_ptr<ZapHandler> zap;  // before the sockets: they are closed first
   zmq::socket_t publisher{context, zmq::socket_type::pub};
   zmq::socket_t requests{context, zmq::socket_type::router};
   std::map<std::string, Client> clients;
@@ -91,6 +94,18 @@ ProbeServer::ProbeServer(const ServerOptions& options) : impl_(std::make_unique<
     s->set(zmq::sockopt::heartbeat_timeout, 4 * options.heartbeat_ms);
     s->set(zmq::sockopt::heartbeat_ttl, 4 * options.heartbeat_ms);
   }
+  if (options.curve) {
+    std::array<std::uint8_t, 32> secret{};
+    if (options.curve->secret_z85.size() != 40 ||
+        zmq_z85_decode(secret.data(), options.curve->secret_z85.c_str()) == nullptr)
+      throw std::runtime_error("the server's CURVE secret key is not 40 Z85 characters");
+    impl_->zap = std::make_unique<ZapHandler>(impl_->context, options.curve->allowed_z85, options.log);
+    for (zmq::socket_t* s : {&impl_->publisher, &impl_->requests}) {
+      s->set(zmq::sockopt::curve_server, true);
+      s->set(zmq::sockopt::curve_secretkey, zmq::buffer(secret));
+      s->set(zmq::sockopt::zap_domain, "ddish");
+    }
+  }
   impl_->publisher.set(zmq::sockopt::sndhwm, 64);
   impl_->requests.set(zmq::sockopt::router_mandatory, 0);
   for (auto [socket, address] : {std::pair{&impl_->publisher, e.publisher()},
@@ -138,5 +153,6 @@ std::size_t ProbeServer::clients() const { return impl_->clients.size(); }
 std::uint64_t ProbeServer::bytes_published() const { return impl_->bytes; }
 std::uint64_t ProbeServer::snapshots_sent() const { return impl_->snapshots; }
 std::uint64_t ProbeServer::malformed_requests() const { return impl_->malformed; }
+std::uint64_t ProbeServer::refused_keys() const { return impl_->zap ? impl_->zap->refused() : 0; }
 
 }  // namespace ddish::net

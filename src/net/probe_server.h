@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <vector>
@@ -21,11 +23,19 @@
 
 namespace ddish::net {
 
+// CurveZMQ on both sockets: the server's secret key and the client public keys it admits (a ZAP
+// handler refuses every other key).
+struct CurveServerKeys {
+  std::string secret_z85;
+  std::set<std::string> allowed_z85;
+};
+
 struct ServerOptions {
   std::string bind = "tcp://127.0.0.1:5570";
   int heartbeat_ms = 250;
   int client_timeout_ms = 2000;
   std::function<void(const std::string&)> log;  // one line per event
+  std::optional<CurveServerKeys> curve;          // none: plaintext
 };
 
 // Microseconds of the steady clock: the time base of server_time_us and of the client's clock.
@@ -51,6 +61,7 @@ class ProbeServer {
   std::uint64_t bytes_published() const;
   std::uint64_t snapshots_sent() const;
   std::uint64_t malformed_requests() const;
+  std::uint64_t refused_keys() const;  // CURVE handshakes the ZAP handler refused
 
  private:
   struct Impl;
