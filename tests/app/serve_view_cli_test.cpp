@@ -226,6 +226,33 @@ TEST_F(ServeView, WithoutServerRendersBakedProbesAndSaysSo) {
   EXPECT_NE(wrong.err.find("ddish: error: --probes"), std::string::npos) << wrong.err;
 }
 
+// CurveZMQ end to end: the listed client key is served, an unknown one gets nothing (the
+// server's ZAP handler refuses it) and renders direct light only.
+TEST_F(ServeView, CurveServesListedKeysOnly) {
+  const std::string keys = (dir_ / "keys").string(), allowed = (dir_ / "allowed").string();
+  for (const char* name : {"server", "client", "stranger"})
+    ASSERT_EQ(run("keys --out " + quote(keys) + " --name " + name).code, 0);
+  cli::fs::create_directories(allowed);
+  cli::fs::copy_file(keys + "/client.pub", allowed + "/client.pub");
+  EXPECT_EQ(cli::slurp(keys + "/server.pub").size(), 41u);  // 40 Z85 characters and a newline
+  EXPECT_EQ(cli::fs::status(keys + "/server.key").permissions() & cli::fs::perms::others_read, cli::fs::perms::none);
+  const std::string bind = address(6);
+  Process server(serve_args(bind, {"--frames", "2", "--seconds", "20", "--curve-secret", keys + "/server.key",
+                                   "--allow-keys", allowed}),
+                 dir_ / "serve");
+  ASSERT_TRUE(wait_for(dir_ / "serve", "update 2:", 15.0)) << cli::slurp(dir_ / "serve");
+  const std::string view = "view " + cli::cornell() + " --grid 4,4,4 " + kImage + " --wait-ms 1500 --connect " + bind +
+                           " --curve-server-key " + quote(keys + "/server.pub") + " --curve-secret ";
+  const cli::Result ok = run(view + quote(keys + "/client.key") + " --out " + quote((dir_ / "ok").string()));
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  EXPECT_NE(ok.err.find("snapshot of frame"), std::string::npos) << ok.err;
+  const cli::Result refused = run(view + quote(keys + "/stranger.key") + " --out " + quote((dir_ / "no").string()));
+  ASSERT_EQ(refused.code, 0) << refused.err;
+  EXPECT_EQ(refused.err.find("snapshot of frame"), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("direct light only"), std::string::npos) << refused.err;
+  EXPECT_TRUE(wait_for(dir_ / "serve", "refused a client whose key is not allowed", 5.0)) << cli::slurp(dir_ / "serve");
+}
+
 TEST_F(ServeView, BadOptionsExitTwoWithOneLine) {
   const std::string scene = cli::cornell();
   for (const std::string& args :
@@ -235,7 +262,9 @@ TEST_F(ServeView, BadOptionsExitTwoWithOneLine) {
         "serve " + scene + " --encoding fp8 --seconds 1",
         "serve " + scene + " --delta-threshold -1 --seconds 1",
         "view " + scene + " --connect nowhere",
-        "view " + scene + " --connect tcp://127.0.0.1:5570 --stale-ms 0"}) {
+        "view " + scene + " --connect tcp://127.0.0.1:5570 --stale-ms 0",
+        "serve " + scene + " --curve-secret " + scene + " --seconds 1",
+        "keys --out " + quote((dir_ / "k").string()) + " --name a/b"}) {
     const cli::Result r = run(args);
     EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
     EXPECT_EQ(r.err.rfind("ddish: error: ", 0), 0u) << args << "\n" << r.err;
