@@ -225,7 +225,7 @@ int run_serve(const ServeArgs& a) {
     const double used_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tick_start).count();
     server.serve_requests(int(std::max(0.0, period.count() - used_ms)), snapshot);
     rec.tick_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tick_start).count();
-    if (rec.updated && (updates <= 3 || updates % 100 == 0))
+    if (rec.updated && (updates <= 3 || updates % 100 == 0 || updates == a.frames))
       std::fprintf(stderr, "serve: update %d: %u probes traced in %.1f ms, %u sent (%zu bytes), %zu clients\n",
                    updates, rec.traced, rec.probe_ms, rec.published.sent, rec.published.bytes, rec.clients);
     ticks.push_back(rec);

@@ -1,6 +1,7 @@
 #include "net/probe_client.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <stdexcept>
 #include <set>
@@ -194,8 +195,13 @@ ClientPoll ProbeClient::poll(int wait_ms) {
         zmq::pollitem_t{s.requests.handle(), 0, ZMQ_POLLIN, 0}};
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         end - std::chrono::steady_clock::now());
-    zmq::poll(items.data(), items.size(),
-              std::chrono::milliseconds(std::clamp<std::int64_t>(left.count(), 0, s.options.snapshot_retry_ms)));
+    try {
+      zmq::poll(items.data(), items.size(),
+                std::chrono::milliseconds(std::clamp<std::int64_t>(left.count(), 0, s.options.snapshot_retry_ms)));
+    } catch (const zmq::error_t& e) {
+      if (e.num() != EINTR) throw;
+      break;  // a signal: the frame goes on with what it has
+    }
   }
   return out;
 }

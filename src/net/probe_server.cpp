@@ -1,6 +1,7 @@
 #include "net/probe_server.h"
 
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <map>
 #include <set>
@@ -132,12 +133,17 @@ void ProbeServer::serve_requests(int timeout_ms,
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         end - std::chrono::steady_clock::now());
     zmq::pollitem_t item{impl_->requests.handle(), 0, ZMQ_POLLIN, 0};
-    zmq::poll(&item, 1, std::chrono::milliseconds(std::max<std::int64_t>(0, left.count())));
-    while (true) {
-      std::vector<zmq::message_t> parts;
-      if (!zmq::recv_multipart(impl_->requests, std::back_inserter(parts), zmq::recv_flags::dontwait))
-        break;
-      impl_->handle(parts, snapshot);
+    try {
+      zmq::poll(&item, 1, std::chrono::milliseconds(std::max<std::int64_t>(0, left.count())));
+      while (true) {
+        std::vector<zmq::message_t> parts;
+        if (!zmq::recv_multipart(impl_->requests, std::back_inserter(parts), zmq::recv_flags::dontwait))
+          break;
+        impl_->handle(parts, snapshot);
+      }
+    } catch (const zmq::error_t& e) {
+      if (e.num() != EINTR) throw;
+      break;  // a signal (SIGINT, SIGTERM): let the caller look at it now
     }
   } while (std::chrono::steady_clock::now() < end);
   impl_->forget_silent_clients();

@@ -51,7 +51,8 @@ class ProbeServer {
 
   void publish(std::span<const std::uint8_t> frame);
 
-  // Answers requests for timeout_ms (polls at least once); `snapshot` makes each reply's keyframe.
+  // Answers requests for timeout_ms (polls at least once; returns early when a signal interrupts
+  // the wait); `snapshot` makes each reply's keyframe.
   void serve_requests(int timeout_ms, const std::function<std::vector<std::uint8_t>()>& snapshot);
 
   // The union of the views of the clients heard from within the timeout.
