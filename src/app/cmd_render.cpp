@@ -148,8 +148,9 @@ void print_progress(const FrameReport& r, int frames) {
                t.stage_ms("forward_gpu"), t.stage_ms("tonemap_gpu"), t.stage_ms("output"),
                t.total_ms(), budget.c_str());
   if (c.stream)
-    std::fprintf(stderr, "  stream: %s frame %llu, stale %.0f ms, probe age %s, %llu bytes, %u frames, %llu rejected\n",
-                 c.stream->synced ? "server" : "last probes of", static_cast<unsigned long long>(c.stream->server_frame),
+    std::fprintf(stderr, "  stream: received in %.1f ms; %s frame %llu, stale %.0f ms, probe age %s, %llu bytes, %u frames, %llu rejected\n",
+                 t.stage_ms("probe_receive"), c.stream->synced ? "server" : "last probes of",
+                 static_cast<unsigned long long>(c.stream->server_frame),
                  c.stream->stale_ms,
                  c.stream->probe_age_ms ? fmt::format("{:.1f} ms", *c.stream->probe_age_ms).c_str() : "unknown",
                  static_cast<unsigned long long>(c.stream->bytes_received), c.stream->frames_applied,
