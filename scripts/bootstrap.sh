@@ -13,9 +13,11 @@ PACKAGES=(
   libcli11-dev libspdlog-dev libfmt-dev libzstd-dev libmeshoptimizer-dev
   # ray tracing and threads
   libembree-dev libtbb-dev
+  # probe stream (src/net): ZeroMQ with CURVE, its C++ binding
+  libzmq3-dev cppzmq-dev
   # tests, plots
   libgtest-dev libgmock-dev gnuplot-nox python3
-  # fuzzing (scripts/fuzz.sh): clang 14 and its libFuzzer, ASan and UBSan runtimes
+  # fuzzing (scripts/fuzz.sh, every tests/fuzz target): clang 14 and its libFuzzer, ASan and UBSan runtimes
   clang-14 libclang-rt-14-dev
   # silences a broken-target warning in Debian's Imath CMake files (pulled in by OpenImageIO)
   python3-imath

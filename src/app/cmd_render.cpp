@@ -22,6 +22,16 @@
 // Ctrl-C / SIGTERM (app/interrupt.h): the frame in progress is finished and written as the
 // last one, --timings has the frames done, and the exit code is 128 + the signal; every file is
 // written whole (io/atomic_file.h), and the output folders are tried before the scene loads.
+//
+// ddish view SCENE --connect tcp://HOST:PORT [--probes FILE] [--wait-ms MS] [--frame-wait-ms MS]
+//                  [--stale-ms MS] [--curve-server-key FILE --curve-secret FILE]
+//                  [every option of render but the probe update's and the schedule's]
+// is the same loop with the probe stream's client as its probe source (remote_probes.h): the
+// probes come from a `ddish serve` of the same scene and probe grid (checked by the scene
+// identity, scene_identity.h), the views go upstream to its scheduler. Without a server at start
+// it renders with --probes FILE (a volume of `ddish probes --out`), else with direct light only,
+// and says which; a lost server leaves the last probes in place. With --curve-server-key (the
+// server's .pub) and --curve-secret (this client's .key) it speaks CurveZMQ.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -46,16 +56,21 @@
 #include "app/output_queue.h"
 #include "app/plan_report.h"
 #include "app/probe_options.h"
+#include "app/remote_probes.h"
 #include "app/render_timings.h"
+#include "app/scene_identity.h"
 #include "app/schedule_options.h"
 #include "app/view_options.h"
 #include "display/calibration.h"
-#include "io/atomic_file.h"
 #include "gpu/context.h"
+#include "io/atomic_file.h"
+#include "net/curve_keys.h"
+#include "net/endpoint.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
 #include "probes/scheduler.h"
 #include "probes/tracer_source.h"
+#include "probes/volume_file.h"
 #include "raster/anisotropy.h"
 #include "raster/renderer.h"
 #include "raster/tonemap.h"
@@ -90,6 +105,15 @@ struct RenderArgs {
   std::string tonemap = "filmic";
   bool no_indirect = false;
   std::optional<std::uint32_t> device;
+  // `ddish view`: the probe stream's client is the probe source.
+  std::string connect;   // empty: `ddish render`, in-process probes
+  std::string baked;     // --probes FILE: the probes until a server answers
+  int wait_ms = 2000;    // frame 0's wait for the server's snapshot
+  int stale_ms = 1000;   // no message for this long: the server is lost
+  int frame_wait_ms = 0;  // later frames' wait for the server's next frame
+  std::string curve_server_key;  // the server's .pub
+  std::string curve_secret;      // this client's .key
+  const char* tag() const { return connect.empty() ? "render" : "view"; }
 };
 
 void check(const RenderArgs& a) {
@@ -98,6 +122,11 @@ void check(const RenderArgs& a) {
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
   if (a.frames < 1) throw std::invalid_argument("--frames must be at least 1");
+  if (a.wait_ms < 0 || a.frame_wait_ms < 0 || a.stale_ms < 1)
+    throw std::invalid_argument("--wait-ms and --frame-wait-ms must be >= 0, --stale-ms >= 1");
+  if (!a.connect.empty()) net::parse_endpoint(a.connect);  // throws with the reason
+  if (a.curve_server_key.empty() != a.curve_secret.empty())
+    throw std::invalid_argument("--curve-server-key and --curve-secret go together");
   if (!(a.fps > 0.0)) throw std::invalid_argument("--fps must be positive");
   if (a.msaa != 0 && a.msaa != 1 && a.msaa != 2 && a.msaa != 4 && a.msaa != 8 && a.msaa != 16)
     throw std::invalid_argument(fmt::format("--msaa must be 1, 2, 4, 8 or 16, got {}", a.msaa));
@@ -129,6 +158,14 @@ void print_progress(const FrameReport& r, int frames) {
                raster_ms(t), raster_ms(t) / std::max(1u, c.views), t.stage_ms("shadow_gpu"),
                t.stage_ms("forward_gpu"), t.stage_ms("tonemap_gpu"), t.stage_ms("output"),
                t.total_ms(), budget.c_str());
+  if (c.stream)
+    std::fprintf(stderr, "  stream: received in %.1f ms; %s frame %llu, stale %.0f ms, probe age %s, %llu bytes, %u frames, %llu rejected\n",
+                 t.stage_ms("probe_receive"), c.stream->synced ? "server" : "last probes of",
+                 static_cast<unsigned long long>(c.stream->server_frame),
+                 c.stream->stale_ms,
+                 c.stream->probe_age_ms ? fmt::format("{:.1f} ms", *c.stream->probe_age_ms).c_str() : "unknown",
+                 static_cast<unsigned long long>(c.stream->bytes_received), c.stream->frames_applied,
+                 static_cast<unsigned long long>(c.stream->rejected));
   if (r.frame == 0 && c.probe_updates > 0)
     std::fprintf(stderr, "render: %u of %u probes inside geometry: never traced or uploaded%s\n",
                  c.probes_inactive, c.probes_active + c.probes_inactive,
@@ -158,20 +195,52 @@ struct GpuRun {
   std::shared_ptr<const gpu::ValidationLog> log;
 };
 
+// The in-process probe half of `ddish render`: path tracer, probe tracer, scheduler.
+struct InProcessParts {
+  trace::Tracer tracer;
+  probes::TracerSource source;
+  probes::ProbeTracer probe_tracer;
+  probes::Scheduler scheduler;
+  double budget_ms;
+  InProcessParts(const RenderArgs& a, const scene::Scene& s, const trace::PathOptions& path, double budget)
+      : tracer(s, path),
+        source(tracer),
+        probe_tracer(source, update_options(a.probe)),
+        scheduler(scheduler_options(a.schedule, a.probe, budget)),
+        budget_ms(budget) {}
+};
+
+// `ddish view`'s starting probes: the --probes volume (same grid and order as the scene's
+// placement, or an error), else none (direct light only until a server answers).
+probes::ProbeVolume starting_volume(const RenderArgs& a, const Placement& placement) {
+  if (a.baked.empty()) return probes::ProbeVolume(placement.grid, a.probe.sh_order);
+  const probes::VolumeFile file = probes::read_volume_file(a.baked);
+  probes::ProbeVolume volume = file.to_volume();
+  if (volume.grid().counts() != placement.grid.counts() || volume.sh_order() != a.probe.sh_order)
+    throw std::invalid_argument(fmt::format(
+        "--probes {}: grid {}x{}x{} L{}, but this scene's probes are {}x{}x{} L{} (same --grid and --sh-order as the server)",
+        a.baked, volume.grid().counts().x, volume.grid().counts().y, volume.grid().counts().z,
+        volume.sh_order(), placement.grid.counts().x, placement.grid.counts().y,
+        placement.grid.counts().z, a.probe.sh_order));
+  return volume;
+}
+
 // Everything that holds Vulkan objects lives in here, so that by the time it returns the device
 // and instance are destroyed and what the layer says about them (leaks) is in the log.
 GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& placement,
                      const DisplayChoice& choice, const display::ViewSet& first,
-                     const FrameWriter& writer) {
-  trace::PathOptions path_options;
-  path_options.max_bounces = a.probe.bounces;
-  trace::Tracer tracer(s, path_options);
-  probes::ProbeVolume volume(placement.grid, a.probe.sh_order);
-  probes::TracerSource source(tracer);
-  probes::ProbeTracer probe_tracer(source, update_options(a.probe));
-  const double budget_ms = frame_budget_ms(
-      a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>());
-  probes::Scheduler scheduler(scheduler_options(a.schedule, a.probe, budget_ms));
+                     const FrameWriter& writer, std::uint64_t identity) {
+  const bool remote = !a.connect.empty();
+  std::unique_ptr<InProcessParts> local;
+  if (!remote) {
+    trace::PathOptions path_options;
+    path_options.max_bounces = a.probe.bounces;
+    local = std::make_unique<InProcessParts>(
+        a, s, path_options,
+        frame_budget_ms(a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>()));
+  }
+  probes::ProbeVolume volume =
+      remote ? starting_volume(a, placement) : probes::ProbeVolume(placement.grid, a.probe.sh_order);
 
   GpuRun run;
   gpu::Context gpu({.device_index = a.device});
@@ -188,33 +257,53 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   raster::Renderer renderer(gpu.device(), s, volume, ro);
   const auto& grid = placement.grid;
   std::fprintf(stderr,
-               "render: %s, %zu triangles on %s; display %s: %zu views of %dx%d (%dx%d atlas %dx%d), "
+               "%s: %s, %zu triangles on %s; display %s: %zu views of %dx%d (%dx%d atlas %dx%d), "
                "%u samples/pixel; probes %dx%dx%d (%s), L%d\n",
-               s.path.c_str(), s.triangle_count(), gpu.device().info().name.c_str(),
+               a.tag(), s.path.c_str(), s.triangle_count(), gpu.device().info().name.c_str(),
                first.name.c_str(), first.size(), first.layout.tile_width,
                first.layout.tile_height, first.layout.columns, first.layout.rows,
                first.layout.width, first.layout.height, renderer.samples(), grid.counts().x,
                grid.counts().y, grid.counts().z, placement.how.c_str(), renderer.sh_order());
 
-  const probes::SchedulerOptions& so = scheduler.options();
-  std::fprintf(stderr, "render: schedule %s, blend %s, max age %u frames, budget %s\n",
-               probes::schedule_mode_name(so.mode), probes::blend_rule_name(so.blend),
-               so.priority.max_age,
-               budget_ms > 0.0 ? fmt::format("{:g} ms per frame", budget_ms).c_str() : "none");
-  std::fprintf(stderr, "render: left out\n");
+  if (local) {
+    const probes::SchedulerOptions& so = local->scheduler.options();
+    std::fprintf(stderr, "render: schedule %s, blend %s, max age %u frames, budget %s\n",
+                 probes::schedule_mode_name(so.mode), probes::blend_rule_name(so.blend),
+                 so.priority.max_age,
+                 local->budget_ms > 0.0 ? fmt::format("{:g} ms per frame", local->budget_ms).c_str() : "none");
+  }
+  std::fprintf(stderr, "%s: left out\n", a.tag());
   for (const std::string& line : left_out_lines(scene::make_plan(scene::analyze(s)), "  "))
     std::fprintf(stderr, "%s\n", line.c_str());
 
   // The views are rebuilt from the posed scene every frame: an animated camera node moves the
   // whole rig.
-  FrameLoop loop(
-      s, tracer, probe_tracer, scheduler,
-      [&](const probes::FramePlan& plan) {
-        return frame_update_options(a.schedule, a.probe, plan.samples, plan.hysteresis);
-      },
-      volume, renderer, [&](const scene::Scene& posed) {
-        return make_frame_views(posed, choice, a.display, a.view).views;
-      });
+  const ViewSource views = [&](const scene::Scene& posed) {
+    return make_frame_views(posed, choice, a.display, a.view).views;
+  };
+  std::unique_ptr<ProbeSource> probes;
+  if (local) {
+    probes = std::make_unique<InProcessProbes>(
+        local->tracer, local->probe_tracer, local->scheduler,
+        [&](const probes::FramePlan& plan) {
+          return frame_update_options(a.schedule, a.probe, plan.samples, plan.hysteresis);
+        },
+        volume);
+  } else {
+    net::ClientOptions co;
+    co.connect = a.connect;
+    co.stale_ms = a.stale_ms;
+    co.log = [](const std::string& line) { std::fprintf(stderr, "view: %s\n", line.c_str()); };
+    if (!a.curve_secret.empty()) {
+      const net::CurveKeyPair mine = net::read_secret_key(a.curve_secret);
+      co.curve = net::CurveClientKeys{net::read_public_key(a.curve_server_key), mine.public_z85, mine.secret_z85};
+    }
+    auto remote_probes = std::make_unique<RemoteProbes>(co, volume, identity, a.wait_ms, a.frame_wait_ms);
+    std::fprintf(stderr, "view: probes from %s (scene identity %016llx)\n", a.connect.c_str(),
+                 static_cast<unsigned long long>(identity));
+    probes = std::move(remote_probes);
+  }
+  FrameLoop loop(s, *probes, renderer, views);
   FrameLoopOptions options;
   options.frames = a.frames;
   options.time = a.time;
@@ -224,7 +313,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   // Without indirect light nothing reads the probes: tracing them would only cost time (and
   // would make a direct-light-only run's frame time meaningless as a baseline).
   options.update_probes = !a.no_indirect;
-  if (a.no_indirect) std::fprintf(stderr, "render: --no-indirect: probes are neither traced nor drawn\n");
+  if (a.no_indirect) std::fprintf(stderr, "%s: --no-indirect: probes are neither traced nor drawn\n", a.tag());
   // Images are encoded and written by the queue's thread while the next frames are drawn; the
   // loop's "output" stage is the hand-over of the views plus any wait for the writer, and the
   // last frame's "output_drain" the wait for the writer to finish after the loop.
@@ -234,7 +323,13 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     queue.push(std::move(frame.views), fmt::format("frame_{:04d}", k), tag);
     return std::vector<fs::path>{};
   };
-  run.result = loop.run(options, sink, [&](const FrameReport& r) { print_progress(r, a.frames); });
+  run.result = loop.run(options, sink, [&](const FrameReport& r) {
+    if (remote && r.frame == 0 && r.counts.stream && !r.counts.stream->synced && !a.no_indirect)
+      std::fprintf(stderr, "view: no probe server at %s after %d ms: rendering with %s until it answers\n",
+                   a.connect.c_str(), a.wait_ms,
+                   a.baked.empty() ? "direct light only" : ("the baked probes of " + a.baked).c_str());
+    print_progress(r, a.frames);
+  });
   const auto drain_start = std::chrono::steady_clock::now();
   run.result.written = queue.finish();
   if (!run.result.timings.frames().empty())
@@ -253,6 +348,7 @@ int run_render(const RenderArgs& a) {
   std::optional<display::Calibration> calibration;
   if (!a.calibration.empty()) calibration = display::load_calibration(a.calibration);
   scene::Scene s = scene::load_scene(a.scene);
+  const std::uint64_t geometry = geometry_identity(s);  // before posing moves animated nodes
   s.pose(a.time);
   const Placement placement = place_probes(a.probe, s);
   const display::ViewSet first = make_frame_views(s, choice, a.display, a.view);
@@ -262,12 +358,13 @@ int run_render(const RenderArgs& a) {
                                    .calibration = calibration});
 
   allow_graceful_stop();
-  const GpuRun run = render_frames(a, s, placement, choice, first, writer);
+  const GpuRun run = render_frames(a, s, placement, choice, first, writer,
+                                   scene_identity(geometry, placement.grid, a.probe.sh_order));
   const std::size_t done = run.result.counts.size();
   if (run.result.stopped)
-    std::fprintf(stderr, "render: stopped by %s after frame %zu of %d (t=%.3f s): its images are "
+    std::fprintf(stderr, "%s: stopped by %s after frame %zu of %d (t=%.3f s): its images are "
                  "written, %s\n",
-                 stop_signal() == SIGTERM ? "SIGTERM" : "SIGINT", done, a.frames,
+                 a.tag(), stop_signal() == SIGTERM ? "SIGTERM" : "SIGINT", done, a.frames,
                  a.time + double(done - 1) / a.fps,
                  a.timings.empty() ? "no later frame was rendered"
                                    : "--timings has the frames done");
@@ -276,7 +373,7 @@ int run_render(const RenderArgs& a) {
   if (!a.timings.empty()) std::printf("wrote %s\n", a.timings.c_str());
   if (run.validation) {
     const std::uint32_t errors = run.log->errors();
-    std::fprintf(stderr, "render: validation: %u errors, %u warnings\n", errors,
+    std::fprintf(stderr, "%s: validation: %u errors, %u warnings\n", a.tag(), errors,
                  run.log->warnings());
     if (errors > 0) {
       const std::vector<std::string> messages = run.log->error_messages();
@@ -289,46 +386,82 @@ int run_render(const RenderArgs& a) {
   return run.result.stopped ? interrupted_exit_code(stop_signal()) : 0;
 }
 
+// The options `ddish render` and `ddish view` share: views, display, frames, output, raster.
+void add_frame_options(CLI::App* cmd, RenderArgs& a) {
+  cmd->add_option("scene", a.scene, "glTF 2.0 scene (.gltf or .glb)")->required()->check(CLI::ExistingFile);
+  add_camera_options(*cmd, a.view);
+  add_display_options(*cmd, a.display);
+  cmd->add_flag("--per-view", a.per_view, "also write every view as DIR/view_NN.png and .exr");
+  cmd->add_option("--calibration", a.calibration,
+                  "Looking Glass calibration (visual.json): also write the lenticular panel image")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--frames", a.frames, "frames to render")->capture_default_str();
+  cmd->add_flag("--every", a.every, "write every frame, not only the last");
+  cmd->add_option("--fps", a.fps, "frame k shows the scene at time + k / fps")->capture_default_str();
+  cmd->add_option("--time", a.time, "scene time of frame 0 (seconds)")->capture_default_str();
+  cmd->add_option("--out", a.out, "output directory")->capture_default_str();
+  cmd->add_option("--timings", a.timings, "write per-frame stage milliseconds as JSON here");
+  cmd->add_option("--msaa", a.msaa, "samples per pixel (default: 4 where supported, else 1)");
+  cmd->add_flag("--sample-shading", a.sample_shading, "shade every MSAA sample");
+  cmd->add_option("--view-batch", a.view_batch,
+                  "views drawn per submission into one reused target; 0: the most whose target "
+                  "fits 256 MiB (fewer means less memory, more submissions)")
+      ->capture_default_str();
+  cmd->add_option("--anisotropy", a.anisotropy,
+                  "texture anisotropic filtering: maximum 2..16 (clamped to the device), 1 off, "
+                  "0 automatic: 8 on GPUs, off on CPU devices (lavapipe, where it can stall a view)")
+      ->capture_default_str();
+  cmd->add_option("--tonemap", a.tonemap, "display curve of the PNG: linear or filmic (ACES fit)")
+      ->capture_default_str();
+  cmd->add_flag("--no-indirect", a.no_indirect,
+                "direct light only: the probes are neither traced nor drawn");
+  RenderArgs* args = &a;
+  cmd->add_option_function<std::uint32_t>(
+      "--device", [args](std::uint32_t d) { args->device = d; }, "Vulkan device index (see ddish devices)");
+}
+
 Action make_render(CLI::App& root) {
   auto a = std::make_shared<RenderArgs>();
   CLI::App* cmd = root.add_subcommand(
       "render", "the main job: probes updated and views rasterized per frame, written to --out");
-  cmd->add_option("scene", a->scene, "glTF 2.0 scene (.gltf or .glb)")->required()->check(CLI::ExistingFile);
-  add_camera_options(*cmd, a->view);
-  add_display_options(*cmd, a->display);
-  cmd->add_flag("--per-view", a->per_view, "also write every view as DIR/view_NN.png and .exr");
-  cmd->add_option("--calibration", a->calibration,
-                  "Looking Glass calibration (visual.json): also write the lenticular panel image")
-      ->check(CLI::ExistingFile);
+  add_frame_options(cmd, *a);
   add_probe_options(*cmd, a->probe);
   add_schedule_options(*cmd, a->schedule);
-  cmd->add_option("--frames", a->frames, "frames to render")->capture_default_str();
-  cmd->add_flag("--every", a->every, "write every frame, not only the last");
-  cmd->add_option("--fps", a->fps, "frame k shows the scene at time + k / fps")->capture_default_str();
-  cmd->add_option("--time", a->time, "scene time of frame 0 (seconds)")->capture_default_str();
-  cmd->add_option("--out", a->out, "output directory")->capture_default_str();
-  cmd->add_option("--timings", a->timings, "write per-frame stage milliseconds as JSON here");
-  cmd->add_option("--msaa", a->msaa, "samples per pixel (default: 4 where supported, else 1)");
-  cmd->add_flag("--sample-shading", a->sample_shading, "shade every MSAA sample");
-  cmd->add_option("--view-batch", a->view_batch,
-                  "views drawn per submission into one reused target; 0: the most whose target "
-                  "fits 256 MiB (fewer means less memory, more submissions)")
+  return [a]() { return run_render(*a); };
+}
+
+Action make_view(CLI::App& root) {
+  auto a = std::make_shared<RenderArgs>();
+  CLI::App* cmd = root.add_subcommand(
+      "view", "ddish render with the probes of a ddish serve: views rasterized, probes streamed");
+  add_frame_options(cmd, *a);
+  cmd->add_option("--connect", a->connect, "the probe server, tcp://HOST:PORT (PORT+1 is its request socket)")
+      ->required();
+  cmd->add_option("--probes", a->baked,
+                  "baked probes (ddish probes --out) to render with until the server answers")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--wait-ms", a->wait_ms, "how long the first frame waits for the server's snapshot")
       ->capture_default_str();
-  cmd->add_option("--anisotropy", a->anisotropy,
-                  "texture anisotropic filtering: maximum 2..16 (clamped to the device), 1 off, "
-                  "0 automatic: 8 on GPUs, off on CPU devices (lavapipe, where it can stall a view)")
+  cmd->add_option("--frame-wait-ms", a->frame_wait_ms,
+                  "each later frame waits up to this long for the server's next frame (0: takes what arrived)")
       ->capture_default_str();
-  cmd->add_option("--tonemap", a->tonemap, "display curve of the PNG: linear or filmic (ACES fit)")
+  cmd->add_option("--stale-ms", a->stale_ms, "no message from the server for this long: it is lost")
       ->capture_default_str();
-  cmd->add_flag("--no-indirect", a->no_indirect,
-                "direct light only: the probes are neither traced nor drawn");
-  cmd->add_option_function<std::uint32_t>(
-      "--device", [a](std::uint32_t d) { a->device = d; }, "Vulkan device index (see ddish devices)");
+  cmd->add_option("--curve-server-key", a->curve_server_key, "the server's public key (.pub): CurveZMQ on")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--curve-secret", a->curve_secret, "this client's secret key (.key of ddish keys)")
+      ->check(CLI::ExistingFile);
+  // The probe placement must be the server's (the scene identity covers it).
+  cmd->add_option("--grid", a->probe.grid,
+                  "probe counts X,Y,Z, or auto, as the server's (default: sidecar counts, else automatic)");
+  cmd->add_option("--probe-spacing", a->probe.spacing, "as the server's --probe-spacing");
+  cmd->add_option("--sh-order", a->probe.sh_order, "as the server's --sh-order")->capture_default_str();
   return [a]() { return run_render(*a); };
 }
 
 }  // namespace
 
 DDISH_COMMAND(20, make_render);
+DDISH_COMMAND(61, make_view);
 
 }  // namespace ddish::app

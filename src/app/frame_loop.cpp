@@ -9,37 +9,20 @@
 
 namespace ddish::app {
 
+FrameLoop::FrameLoop(scene::Scene& scene, ProbeSource& probes, raster::Renderer& renderer,
+                     ViewSource views)
+    : scene_(scene), probes_(probes), renderer_(renderer), views_(std::move(views)) {}
+
 FrameLoop::FrameLoop(scene::Scene& scene, trace::Tracer& tracer,
                      probes::ProbeTracer& probe_tracer, probes::Scheduler& scheduler,
                      UpdateOptionsFor update_options, probes::ProbeVolume& volume,
                      raster::Renderer& renderer, ViewSource views)
     : scene_(scene),
-      tracer_(tracer),
-      probe_tracer_(probe_tracer),
-      scheduler_(scheduler),
-      update_options_(std::move(update_options)),
-      volume_(volume),
+      owned_probes_(std::make_unique<InProcessProbes>(tracer, probe_tracer, scheduler,
+                                                      std::move(update_options), volume)),
+      probes_(*owned_probes_),
       renderer_(renderer),
-      views_(std::move(views)) {
-  last_flags_.resize(volume.probe_count());
-  for (std::uint32_t i = 0; i < volume.probe_count(); ++i) last_flags_[i] = volume.state(i).flags;
-}
-
-std::vector<std::uint32_t> FrameLoop::changed_probes(const std::vector<std::uint32_t>& traced) {
-  // Traced this frame and still active, or with changed flags (a probe found inside geometry
-  // drops out of the interpolation and must be re-sent once with weight 0). Nothing else: an
-  // inactive probe is never uploaded again, an untraced active one still holds what was sent.
-  std::vector<std::uint32_t> dirty;
-  auto next = traced.begin();
-  for (std::uint32_t i = 0; i < volume_.probe_count(); ++i) {
-    const probes::ProbeState& s = volume_.state(i);
-    while (next != traced.end() && *next < i) ++next;
-    const bool was_traced = next != traced.end() && *next == i;
-    if ((was_traced && s.active()) || s.flags != last_flags_[i]) dirty.push_back(i);
-    last_flags_[i] = s.flags;
-  }
-  return dirty;
-}
+      views_(std::move(views)) {}
 
 namespace {
 
@@ -63,7 +46,6 @@ void count_probes(const probes::ProbeVolume& volume, FrameCounts& counts) {
 FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
                                const std::function<void(const FrameReport&)>& progress) {
   FrameLoopResult result;
-  const bool animated = !scene_.animations.empty();
   for (int k = 0; k < o.frames; ++k) {
     metrics::FrameTimings timings;
     timings.frame = k;
@@ -76,33 +58,17 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
       metrics::StageTimer timer(timings, "pose");
       moved = scene_.pose(t);
     }
-    if (animated) {  // lights may move without any instance moving
-      metrics::StageTimer timer(timings, "tracer_update");
-      tracer_.update(scene_, moved);
-    }
+    probes_.posed(scene_, moved, timings);
     // The views come first: the scheduler ranks the probes by what they see.
     const std::vector<scene::View> views = views_(scene_);
     report.counts.views = static_cast<std::uint32_t>(views.size());
-    const std::uint64_t updates_before = volume_.frame();
-    const std::uint64_t rays_before = tracer_.rays_traced();
-    probes::FramePlan plan;
-    probes::UpdateStats update;
-    if (o.update_probes) {
-      metrics::StageTimer timer(timings, "probe_update");
-      plan = scheduler_.plan(volume_, views);
-      probe_tracer_.set_options(update_options_(plan));
-      update = probe_tracer_.update(volume_, plan.probes);  // the frame's one probe update
-      report.counts.probes_traced = update.probes_traced;
-    }
-    report.counts.probe_updates = volume_.frame() - updates_before;
-    report.counts.probe_rays = tracer_.rays_traced() - rays_before;
-    count_probes(volume_, report.counts);
+    const ProbeStep step = probes_.update(views, o.update_probes, timings, report.counts);
+    count_probes(probes_.volume(), report.counts);
     {
       metrics::StageTimer timer(timings, "upload");
-      const std::vector<std::uint32_t> dirty = changed_probes(plan.probes);
-      report.counts.probes_changed = static_cast<std::uint32_t>(dirty.size());
+      report.counts.probes_changed = static_cast<std::uint32_t>(step.changed.size());
       report.counts.probes_uploaded =
-          dirty.empty() ? 0u : renderer_.upload_probes(volume_, dirty).probes;
+          step.changed.empty() ? 0u : renderer_.upload_probes(probes_.volume(), step.changed).probes;
     }
     raster::FrameOutput frame = renderer_.render(scene_, views);
     // The GPU passes run while the CPU waits for the submission, so the wait is split into the
@@ -126,17 +92,7 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
       metrics::StageTimer timer(timings, "output");
       for (auto& path : sink(k, frame)) result.written.push_back(std::move(path));
     }
-    // Frame 0 is not representative: it classifies every probe and builds shadow maps and
-    // pipelines once; teaching the budget controller its cost would starve the next frames.
-    if (o.update_probes && k > 0)
-      scheduler_.observe({.frame_ms = timings.total_ms(),
-                          .probe_ms = update.seconds * 1e3,
-                          .paths = update.paths,
-                          .rays = update.rays});
-    std::vector<probes::StageMs> stages;
-    for (const metrics::StageTime& s : timings.stages) stages.push_back({s.name, s.ms});
-    report.counts.schedule =
-        probes::make_frame_record(k, plan, update, std::move(stages), scheduler_.budget());
+    probes_.finished(k, timings, step, o.update_probes, report.counts);
     result.timings.add(timings);
     result.counts.push_back(report.counts);
     report.timings = &result.timings.frames().back();

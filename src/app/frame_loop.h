@@ -1,6 +1,8 @@
-// The per-frame orchestration of `ddish render`: pose the scene at t = time + k / fps, follow
-// the moved instances in the path tracer, update the probes once (shared by every view), upload
-// the probes that changed, rasterize the views, and write the images that are asked for. Each
+// The per-frame orchestration of `ddish render` and `ddish view`: pose the scene at
+// t = time + k / fps, let the probe source (probe_source.h: in-process, or the probe stream's
+// client) follow the moved instances and bring the probes up to date once (shared by every
+// view), upload the probes that changed, rasterize the views, and write the images that are
+// asked for. Each
 // stage's milliseconds go into a metrics::FrameTimings per frame:
 //   pose, tracer_update (animated scenes), probe_update, upload, raster_record (CPU: frame data
 //   and command recording), shadow_gpu / forward_gpu / tonemap_gpu (GPU timestamps), raster_wait
@@ -21,9 +23,12 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "app/frame_counts.h"
+#include "app/probe_source.h"
 #include "metrics/timing.h"
 #include "probes/probe_tracer.h"
 #include "probes/scheduler.h"
@@ -60,31 +65,6 @@ struct FrameLoopOptions {
   const std::atomic<bool>* stop = nullptr;
 };
 
-// What a frame did, counted (not timed): the figures that must not grow with the views.
-struct FrameCounts {
-  std::uint32_t views = 0;
-  // Probe tracer runs this frame, read from the volume's update counter (ProbeVolume::frame()),
-  // not from the loop's own control flow: one per frame whatever the number of views.
-  std::uint64_t probe_updates = 0;
-  std::uint64_t probe_rays = 0;  // rays the path tracer cast this frame (probe paths)
-  std::uint32_t probes_traced = 0;
-  std::uint32_t probes_changed = 0;   // traced or newly inactive: what the loop hands over
-  std::uint32_t probes_uploaded = 0;  // what the renderer copied (it may copy the whole volume
-                                      // when many changed: ProbeTextures::kFullUploadFraction)
-  std::uint32_t probes_active = 0;     // after this frame's update
-  std::uint32_t probes_inactive = 0;   // inside geometry (or otherwise inactive) after it
-  std::uint32_t probes_never_updated = 0;  // active probes no update has reached yet
-  std::uint32_t oldest_probe_age = 0;      // the largest age of an active probe after it
-  std::uint32_t probes_unclassified = 0;   // not yet traced, so not yet known inside or out
-  std::uint32_t shadow_passes = 0;     // raster::FrameStats::shadow_passes
-  bool shadows_reused = false;
-  std::uint32_t forward_passes = 0;
-  std::uint32_t tonemap_passes = 0;
-  // The scheduler's log of this frame (budget, stages, probes traced and skipped, samples,
-  // rays); with update_probes off only its stages and budget are filled.
-  probes::SchedulerFrameRecord schedule;
-};
-
 struct FrameReport {
   int frame = 0;
   double t = 0.0;
@@ -102,9 +82,6 @@ struct FrameLoopResult {
 // The views of a frame from the scene as posed (a camera node may be animated).
 using ViewSource = std::function<std::vector<scene::View>(const scene::Scene&)>;
 
-// The probe tracer's options for a frame's plan (samples, hysteresis and the blend rule).
-using UpdateOptionsFor = std::function<probes::UpdateOptions(const probes::FramePlan&)>;
-
 // Writes frame `frame`'s images and returns the files written. The frame is the sink's: it may
 // move the images out (the loop reads only its stats, before the sink runs).
 using FrameSink =
@@ -112,7 +89,10 @@ using FrameSink =
 
 class FrameLoop {
  public:
-  // Everything is borrowed and must outlive the loop; the renderer was made for `volume`.
+  // Everything is borrowed and must outlive the loop; the renderer was made for the source's
+  // volume.
+  FrameLoop(scene::Scene& scene, ProbeSource& probes, raster::Renderer& renderer, ViewSource views);
+  // The in-process probe source (`ddish render`) over these parts.
   FrameLoop(scene::Scene& scene, trace::Tracer& tracer, probes::ProbeTracer& probe_tracer,
             probes::Scheduler& scheduler, UpdateOptionsFor update_options,
             probes::ProbeVolume& volume, raster::Renderer& renderer, ViewSource views);
@@ -123,19 +103,11 @@ class FrameLoop {
                       const std::function<void(const FrameReport&)>& progress = {});
 
  private:
-  // The probes traced this frame (`traced`, increasing) and those whose flags changed since the
-  // last upload (found inside geometry), merged in increasing order.
-  std::vector<std::uint32_t> changed_probes(const std::vector<std::uint32_t>& traced);
-
   scene::Scene& scene_;
-  trace::Tracer& tracer_;
-  probes::ProbeTracer& probe_tracer_;
-  probes::Scheduler& scheduler_;
-  UpdateOptionsFor update_options_;
-  probes::ProbeVolume& volume_;
+  std::unique_ptr<ProbeSource> owned_probes_;  // the in-process source the loop made itself
+  ProbeSource& probes_;
   raster::Renderer& renderer_;
   ViewSource views_;
-  std::vector<std::uint8_t> last_flags_;  // probe flags at the last upload
 };
 
 }  // namespace ddish::app

@@ -51,6 +51,17 @@ nlohmann::ordered_json render_timings_json(const metrics::TimingLog& log,
     f["scheduler"] = c.schedule.to_json();
     f["per_view_ms"] = {{"forward_gpu", t.stage_ms("forward_gpu") / views},
                         {"raster", raster_ms(t) / views}};
+    if (c.stream) {
+      const StreamFrameCounts& st = *c.stream;
+      f["stream"] = {{"synced", st.synced},
+                     {"server_frame", st.server_frame},
+                     {"stale_ms", st.stale_ms},
+                     {"probe_age_ms", st.probe_age_ms ? nlohmann::ordered_json(*st.probe_age_ms)
+                                                      : nlohmann::ordered_json(nullptr)},
+                     {"bytes_received", st.bytes_received},
+                     {"frames_applied", st.frames_applied},
+                     {"rejected", st.rejected}};
+    }
   }
   doc["frames"] = std::move(frames);
   doc["summary"] = std::move(timing["summary"]);

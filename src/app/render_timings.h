@@ -11,7 +11,9 @@
 //   (raster::FrameStats), "scheduler" (probes::SchedulerFrameRecord's JSON: budget, stages,
 //   probes traced / skipped, samples per probe, rays, over_allowance), and "per_view_ms":
 //   {"forward_gpu": forward_gpu / views, "raster": (raster_record + shadow_gpu + forward_gpu +
-//   tonemap_gpu + raster_wait + readback) / views}.
+//   tonemap_gpu + raster_wait + readback) / views}; for `ddish view` also "stream":
+//   {"synced", "server_frame", "stale_ms", "probe_age_ms" (null until the server's clock is
+//   known), "bytes_received", "frames_applied", "rejected"} (app/frame_counts.h).
 // The renderer times the forward pass of all views with one pair of timestamps (blocks of views
 // share passes under multiview), so per-view figures are the frame's time divided by the views.
 #pragma once

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Figures of the probe stream (docs/protocol.md), from the built binaries on loopback:
+#   1. bytes per L2 probe per encoding (the first update of an 8x8x8 grid, every probe sent) and
+#      the PSNR of a view's image against the in-process render of the same probes;
+#   2. bytes per second, static (cornell_box) against animated (cornell_animated), change-driven
+#      stream at the default threshold, uniform schedule (every probe traced every tick), 30 ticks/s;
+#   3. probe age at a client (server trace end -> upload, ms): median and 95th percentile.
+# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24019; ~2 minutes.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+B=${1:-build}
+D=$(mktemp -d /tmp/ddish_net_figures.XXXX)
+trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$D"' EXIT
+PROBES="--grid 8,8,8 --probe-samples 128 --schedule uniform"
+IMAGE="--width 256 --height 256"
+S=scenes/cornell_box.gltf
+wait_for() { for _ in $(seq 1 600); do grep -q "$2" "$1" 2>/dev/null && return 0; sleep 0.1; done; echo "timeout: $2 in $1" >&2; return 1; }
+
+"$B/ddish" render $S $PROBES $IMAGE --frames 5 --out "$D/render" >/dev/null 2>&1
+echo "encoding,zstd,bytes_first_update,probes_sent,bytes_per_probe,psnr_vs_in_process_db"
+port=24000
+for enc in fp16 shared-exponent compact; do
+  for z in "" "--zstd"; do
+    "$B/ddish" serve $S $PROBES --bind tcp://127.0.0.1:$port --frames 5 --seconds 30 --encoding $enc $z \
+      --delta-threshold 0 --timings "$D/serve.json" >"$D/serve.log" 2>&1 &
+    pid=$!
+    wait_for "$D/serve.log" "update 5:"
+    "$B/ddish" view $S --grid 8,8,8 $IMAGE --connect tcp://127.0.0.1:$port --out "$D/view" >/dev/null 2>&1
+    kill -TERM $pid; wait $pid || true
+    psnr=$("$B/ddish" compare "$D/view/frame_0000.exr" "$D/render/frame_0004.exr" | awk '/psnr/ {print $2}')
+    python3 - "$D/serve.json" "$enc" "${z:+yes}" "$psnr" <<'PY'
+import json, sys
+t = json.load(open(sys.argv[1]))["ticks"]
+first = next(x for x in t if x["probes_sent"] > 0)
+print(f'{sys.argv[2]},{sys.argv[3] or "no"},{first["bytes"]},{first["probes_sent"]},{(first["bytes"] - 88) / first["probes_sent"]:.2f},{sys.argv[4]}')
+PY
+    port=$((port + 2))
+  done
+done
+
+echo
+echo "scene,bytes_per_second,ticks,mean_probes_sent_per_tick_after_1s"
+for scene in cornell_box cornell_animated; do
+  "$B/ddish" serve scenes/$scene.gltf --grid 8,8,8 --probe-samples 64 --schedule uniform --bind tcp://127.0.0.1:$port \
+    --frames 150 --fps 30 --seconds 6 --timings "$D/rate.json" >/dev/null 2>&1
+  python3 - "$D/rate.json" "$scene" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+t = [x for x in d["ticks"] if x["updated"]]
+late = t[30:]
+print(f'{sys.argv[2]},{d["summary"]["bytes_per_second"]:.0f},{len(d["ticks"])},{sum(x["probes_sent"] for x in late) / max(1, len(late)):.1f}')
+PY
+  port=$((port + 2))
+done
+
+echo
+echo "probe_age_ms_median,probe_age_ms_p95,frames"
+"$B/ddish" serve $S --grid 8,8,8 --probe-samples 64 --bind tcp://127.0.0.1:$port --fps 30 --seconds 20 >"$D/age.log" 2>&1 &
+pid=$!
+sleep 1
+"$B/ddish" view $S --grid 8,8,8 --width 128 --height 128 --connect tcp://127.0.0.1:$port --frames 90 \
+  --frame-wait-ms 40 --out "$D/age" --timings "$D/age.json" >/dev/null 2>&1
+kill -TERM $pid; wait $pid || true
+python3 - "$D/age.json" <<'PY'
+import json, sys, statistics
+a = sorted(f["stream"]["probe_age_ms"] for f in json.load(open(sys.argv[1]))["frames"][10:] if f["stream"]["probe_age_ms"] is not None)
+print(f'{statistics.median(a):.1f},{a[int(0.95 * (len(a) - 1))]:.1f},{len(a)}')
+PY

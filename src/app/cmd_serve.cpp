@@ -1,0 +1,281 @@
+// ddish serve SCENE [--bind tcp://127.0.0.1:PORT] [--insecure] [--fps F] [--frames N]
+//                   [--seconds S] [--time T] [--encoding fp16|shared-exponent|compact] [--zstd]
+//                   [--delta-threshold R] [--delta-floor A] [--client-timeout-ms MS]
+//                   [--curve-secret FILE --allow-keys DIR]
+//                   [--timings FILE.json] [probe options] [schedule options]
+//
+// The probe server: the frame loop's in-process probe source (probe_source.h) with the probe
+// stream's publisher (net/) as its only consumer, and no rasterizer. Each tick (--fps) it poses
+// the scene, plans the probes from the union of its clients' views (each client's views ranked
+// like a display's) within --budget-ms, runs the one probe update, and publishes the delta of
+// what changed (net/published_probes.h: --delta-threshold); between ticks it answers snapshot
+// requests and takes the clients' views. A client silent for --client-timeout-ms stops counting.
+// With no client it idles (publishes empty deltas as heartbeats, traces nothing); --frames N
+// instead makes N updates whatever the clients, then serves their result. --seconds S stops it
+// after S seconds, SIGINT / SIGTERM at once; either way --timings is written (per tick: whether
+// it updated, probe ms, probes traced / sent / deactivated / held back, bytes, clients).
+// It binds loopback unless told otherwise; a non-loopback --bind needs keys or --insecure. With
+// --curve-secret (the server's .key of `ddish keys`) and --allow-keys (a folder of clients' .pub
+// files) both sockets speak CurveZMQ and a ZAP handler refuses every client key not listed.
+#include <chrono>
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/probe_options.h"
+#include "app/probe_source.h"
+#include "app/scene_identity.h"
+#include "app/schedule_options.h"
+#include "net/curve_keys.h"
+#include "net/endpoint.h"
+#include "net/probe_server.h"
+#include "net/published_probes.h"
+#include "probes/probe_tracer.h"
+#include "probes/probe_volume.h"
+#include "probes/scheduler.h"
+#include "probes/tracer_source.h"
+#include "scene/gltf_loader.h"
+#include "scene/scene.h"
+#include "trace/tracer.h"
+
+namespace ddish::app {
+namespace {
+
+volatile std::sig_atomic_t g_stop = 0;
+void request_stop(int) { g_stop = 1; }
+
+struct ServeArgs {
+  std::string scene;
+  std::string bind = "tcp://127.0.0.1:5570";
+  bool insecure = false;
+  ProbeArgs probe;
+  ScheduleArgs schedule;
+  double fps = 30.0;
+  double time = 0.0;
+  int frames = 0;
+  double seconds = 0.0;
+  std::string encoding = "compact";
+  bool zstd = false;
+  float threshold = 0.01f;
+  float floor = 0.0f;
+  int client_timeout_ms = 2000;
+  std::string timings;
+  std::string curve_secret;
+  std::string allow_keys;
+};
+
+void check(const ServeArgs& a) {
+  check_probe_options(a.probe);
+  check_schedule_options(a.schedule);
+  if (!(a.fps > 0.0) || a.fps > 1000.0) throw std::invalid_argument("--fps must be in (0, 1000]");
+  if (a.frames < 0 || a.seconds < 0.0) throw std::invalid_argument("--frames and --seconds must be >= 0");
+  if (!net::parse_encoding(a.encoding))
+    throw std::invalid_argument("--encoding must be fp16, shared-exponent or compact, got '" + a.encoding + "'");
+  if (!(a.threshold >= 0.0f) || !(a.floor >= 0.0f))
+    throw std::invalid_argument("--delta-threshold and --delta-floor must be >= 0");
+  if (a.client_timeout_ms < 1) throw std::invalid_argument("--client-timeout-ms must be >= 1");
+  if (a.curve_secret.empty() != a.allow_keys.empty())
+    throw std::invalid_argument("--curve-secret and --allow-keys go together");
+  const net::Endpoint e = net::parse_endpoint(a.bind);
+  if (!e.loopback() && !a.insecure && a.curve_secret.empty())
+    throw std::invalid_argument("--bind " + a.bind +
+                                " is not a loopback address: serving it needs --curve-secret and --allow-keys, or --insecure");
+}
+
+struct TickRecord {
+  std::uint64_t tick = 0;
+  bool updated = false;
+  double probe_ms = 0.0;
+  double tick_ms = 0.0;
+  std::uint32_t traced = 0;
+  net::PublishStats published;
+  std::size_t clients = 0;
+};
+
+void write_timings(const std::string& path, const std::vector<TickRecord>& ticks,
+                   const net::ProbeServer& server, double seconds) {
+  nlohmann::ordered_json doc;
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  std::uint64_t updates = 0;
+  for (const TickRecord& t : ticks) {
+    updates += t.updated;
+    list.push_back({{"tick", t.tick},
+                    {"updated", t.updated},
+                    {"probe_ms", t.probe_ms},
+                    {"tick_ms", t.tick_ms},
+                    {"probes_traced", t.traced},
+                    {"probes_sent", t.published.sent},
+                    {"probes_deactivated", t.published.deactivated},
+                    {"probes_held_back", t.published.held_back},
+                    {"probes_saturated", t.published.saturated},
+                    {"bytes", t.published.bytes},
+                    {"clients", t.clients}});
+  }
+  doc["ticks"] = std::move(list);
+  doc["summary"] = {{"ticks", ticks.size()},
+                    {"updates", updates},
+                    {"seconds", seconds},
+                    {"bytes_published", server.bytes_published()},
+                    {"bytes_per_second", seconds > 0.0 ? double(server.bytes_published()) / seconds : 0.0},
+                    {"snapshots_sent", server.snapshots_sent()},
+                    {"malformed_requests", server.malformed_requests()}};
+  std::ofstream out(path);
+  out << doc.dump(2) << '\n';
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+int run_serve(const ServeArgs& a) {
+  check(a);
+  scene::Scene s = scene::load_scene(a.scene);
+  const std::uint64_t geometry = geometry_identity(s);
+  s.pose(a.time);
+  const Placement placement = place_probes(a.probe, s);
+  const std::uint64_t identity = scene_identity(geometry, placement.grid, a.probe.sh_order);
+
+  trace::PathOptions path_options;
+  path_options.max_bounces = a.probe.bounces;
+  trace::Tracer tracer(s, path_options);
+  probes::TracerSource source(tracer);
+  probes::ProbeTracer probe_tracer(source, update_options(a.probe));
+  const double budget_ms = frame_budget_ms(a.schedule, std::nullopt);
+  probes::Scheduler scheduler(scheduler_options(a.schedule, a.probe, budget_ms));
+  probes::ProbeVolume volume(placement.grid, a.probe.sh_order);
+  InProcessProbes probes_source(
+      tracer, probe_tracer, scheduler,
+      [&](const probes::FramePlan& plan) {
+        return frame_update_options(a.schedule, a.probe, plan.samples, plan.hysteresis);
+      },
+      volume);
+
+  const std::uint64_t stream = (std::uint64_t(std::random_device{}()) << 32) ^ std::random_device{}() ^
+                               std::uint64_t(net::steady_now_us());
+  net::StreamOptions so;
+  so.encoding = *net::parse_encoding(a.encoding);
+  so.zstd = a.zstd;
+  so.threshold = a.threshold;
+  so.floor = a.floor;
+  net::PublishedProbes published(placement.grid, a.probe.sh_order, identity, stream, so);
+  std::optional<net::CurveServerKeys> curve;
+  if (!a.curve_secret.empty())
+    curve = net::CurveServerKeys{net::read_secret_key(a.curve_secret).secret_z85,
+                                 net::read_allowed_keys(a.allow_keys)};
+  net::ProbeServer server({.bind = a.bind,
+                           .client_timeout_ms = a.client_timeout_ms,
+                           .log = [](const std::string& line) { std::fprintf(stderr, "serve: %s\n", line.c_str()); },
+                           .curve = curve});
+  if (curve)
+    std::fprintf(stderr, "serve: CurveZMQ, %zu client keys allowed (%s)\n", curve->allowed_z85.size(),
+                 a.allow_keys.c_str());
+  const net::Endpoint endpoint = net::parse_endpoint(a.bind);
+  const auto& g = placement.grid;
+  std::fprintf(stderr,
+               "serve: %s on %s (requests %s), scene identity %016llx, stream %016llx; probes %dx%dx%d "
+               "(%s), L%d, %s%s, delta threshold %g (floor %g); %s\n",
+               s.path.c_str(), endpoint.publisher().c_str(), endpoint.requests().c_str(),
+               static_cast<unsigned long long>(identity), static_cast<unsigned long long>(stream),
+               g.counts().x, g.counts().y, g.counts().z, placement.how.c_str(), a.probe.sh_order,
+               a.encoding.c_str(), a.zstd ? " + zstd" : "", a.threshold, a.floor,
+               a.frames > 0 ? fmt::format("{} updates, then serving them", a.frames).c_str()
+                            : "updating while clients are connected");
+  std::fflush(stderr);
+
+  std::signal(SIGINT, request_stop);
+  std::signal(SIGTERM, request_stop);
+  const auto start = std::chrono::steady_clock::now();
+  const auto period = std::chrono::duration<double, std::milli>(1000.0 / a.fps);
+  std::vector<TickRecord> ticks;
+  std::int64_t last_update_end_us = net::steady_now_us();
+  double scene_time = a.time;
+  int updates = 0;
+  const auto snapshot = [&] { return published.snapshot(); };
+  for (std::uint64_t tick = 1; !g_stop; ++tick) {
+    const auto tick_start = std::chrono::steady_clock::now();
+    if (a.seconds > 0.0 && std::chrono::duration<double>(tick_start - start).count() >= a.seconds) break;
+    TickRecord rec;
+    rec.tick = tick;
+    rec.clients = server.clients();
+    const bool update = a.frames > 0 ? updates < a.frames : rec.clients > 0;
+    if (update) {
+      metrics::FrameTimings timings;
+      FrameCounts counts;
+      scene_time = a.time + double(updates) / a.fps;
+      std::vector<int> moved = s.pose(scene_time);
+      probes_source.posed(s, moved, timings);
+      const ProbeStep step = probes_source.update(server.views(), true, timings, counts);
+      last_update_end_us = net::steady_now_us();
+      probes_source.finished(updates, timings, step, true, counts);
+      rec.updated = true;
+      rec.probe_ms = timings.stage_ms("probe_update");
+      rec.traced = counts.probes_traced;
+      ++updates;
+    }
+    server.publish(published.publish(volume, tick, last_update_end_us, scene_time, &rec.published));
+    const double used_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tick_start).count();
+    server.serve_requests(int(std::max(0.0, period.count() - used_ms)), snapshot);
+    rec.tick_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tick_start).count();
+    if (rec.updated && (updates <= 3 || updates % 100 == 0 || updates == a.frames))
+      std::fprintf(stderr, "serve: update %d: %u probes traced in %.1f ms, %u sent (%zu bytes), %zu clients\n",
+                   updates, rec.traced, rec.probe_ms, rec.published.sent, rec.published.bytes, rec.clients);
+    ticks.push_back(rec);
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stderr, "serve: stopped after %zu ticks (%d updates), %llu bytes published, %llu snapshots\n",
+               ticks.size(), updates, static_cast<unsigned long long>(server.bytes_published()),
+               static_cast<unsigned long long>(server.snapshots_sent()));
+  if (!a.timings.empty()) {
+    write_timings(a.timings, ticks, server, seconds);
+    std::printf("wrote %s\n", a.timings.c_str());
+  }
+  return 0;
+}
+
+Action make_serve(CLI::App& root) {
+  auto a = std::make_shared<ServeArgs>();
+  CLI::App* cmd = root.add_subcommand("serve", "probe server: probes path-traced and streamed to ddish view clients");
+  cmd->add_option("scene", a->scene, "glTF 2.0 scene (.gltf or .glb)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--bind", a->bind, "publisher address tcp://HOST:PORT (PORT+1: requests)")->capture_default_str();
+  cmd->add_flag("--insecure", a->insecure, "allow a non-loopback --bind without keys");
+  add_probe_options(*cmd, a->probe);
+  add_schedule_options(*cmd, a->schedule);
+  cmd->add_option("--fps", a->fps, "ticks per second (one probe update and one published delta each)")
+      ->capture_default_str();
+  cmd->add_option("--time", a->time, "scene time of the first update (seconds); update k shows time + k / fps")
+      ->capture_default_str();
+  cmd->add_option("--frames", a->frames, "make this many updates whatever the clients, then serve them (0: update while clients are connected)")
+      ->capture_default_str();
+  cmd->add_option("--seconds", a->seconds, "stop after this many seconds (0: run until interrupted)")
+      ->capture_default_str();
+  cmd->add_option("--encoding", a->encoding, "probe encoding: fp16, shared-exponent or compact")->capture_default_str();
+  cmd->add_flag("--zstd", a->zstd, "compress every frame's payload with zstd");
+  cmd->add_option("--delta-threshold", a->threshold,
+                  "re-send a probe when a coefficient moved more than this fraction of its largest L0")
+      ->capture_default_str();
+  cmd->add_option("--delta-floor", a->floor, "... or more than this absolute amount, whichever is larger")
+      ->capture_default_str();
+  cmd->add_option("--client-timeout-ms", a->client_timeout_ms, "a client silent for this long stops counting")
+      ->capture_default_str();
+  cmd->add_option("--timings", a->timings, "write a per-tick record as JSON here");
+  cmd->add_option("--curve-secret", a->curve_secret, "the server's secret key (ddish keys): CurveZMQ on")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--allow-keys", a->allow_keys, "folder of the client public keys (.pub) the server admits")
+      ->check(CLI::ExistingDirectory);
+  return [a]() { return run_serve(*a); };
+}
+
+}  // namespace
+
+DDISH_COMMAND(60, make_serve);
+
+}  // namespace ddish::app

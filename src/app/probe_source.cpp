@@ -1,0 +1,77 @@
+#include "app/probe_source.h"
+
+#include "probes/probe_volume.h"
+#include "scene/scene.h"
+#include "trace/tracer.h"
+
+namespace ddish::app {
+
+InProcessProbes::InProcessProbes(trace::Tracer& tracer, probes::ProbeTracer& probe_tracer,
+                                 probes::Scheduler& scheduler, UpdateOptionsFor update_options,
+                                 probes::ProbeVolume& volume)
+    : tracer_(tracer),
+      probe_tracer_(probe_tracer),
+      scheduler_(scheduler),
+      update_options_(std::move(update_options)),
+      volume_(volume) {
+  last_flags_.resize(volume.probe_count());
+  for (std::uint32_t i = 0; i < volume.probe_count(); ++i) last_flags_[i] = volume.state(i).flags;
+}
+
+std::vector<std::uint32_t> InProcessProbes::changed_probes(const std::vector<std::uint32_t>& traced) {
+  // Traced this frame and still active, or with changed flags (a probe found inside geometry
+  // drops out of the interpolation and must be re-sent once with weight 0). Nothing else: an
+  // inactive probe is never uploaded again, an untraced active one still holds what was sent.
+  std::vector<std::uint32_t> dirty;
+  auto next = traced.begin();
+  for (std::uint32_t i = 0; i < volume_.probe_count(); ++i) {
+    const probes::ProbeState& s = volume_.state(i);
+    while (next != traced.end() && *next < i) ++next;
+    const bool was_traced = next != traced.end() && *next == i;
+    if ((was_traced && s.active()) || s.flags != last_flags_[i]) dirty.push_back(i);
+    last_flags_[i] = s.flags;
+  }
+  return dirty;
+}
+
+void InProcessProbes::posed(const scene::Scene& scene, const std::vector<int>& moved,
+                            metrics::FrameTimings& timings) {
+  if (scene.animations.empty()) return;
+  metrics::StageTimer timer(timings, "tracer_update");  // lights may move without any instance moving
+  tracer_.update(scene, moved);
+}
+
+ProbeStep InProcessProbes::update(const std::vector<scene::View>& views, bool enabled,
+                                  metrics::FrameTimings& timings, FrameCounts& counts) {
+  ProbeStep step;
+  const std::uint64_t updates_before = volume_.frame();
+  const std::uint64_t rays_before = tracer_.rays_traced();
+  if (enabled) {
+    metrics::StageTimer timer(timings, "probe_update");
+    step.plan = scheduler_.plan(volume_, views);
+    probe_tracer_.set_options(update_options_(step.plan));
+    step.update = probe_tracer_.update(volume_, step.plan.probes);  // the frame's one probe update
+    counts.probes_traced = step.update.probes_traced;
+  }
+  counts.probe_updates = volume_.frame() - updates_before;
+  counts.probe_rays = tracer_.rays_traced() - rays_before;
+  step.changed = changed_probes(step.plan.probes);
+  return step;
+}
+
+void InProcessProbes::finished(int frame, const metrics::FrameTimings& timings,
+                               const ProbeStep& step, bool enabled, FrameCounts& counts) {
+  // Frame 0 is not representative: it classifies every probe and builds shadow maps and
+  // pipelines once; teaching the budget controller its cost would starve the next frames.
+  if (enabled && frame > 0)
+    scheduler_.observe({.frame_ms = timings.total_ms(),
+                        .probe_ms = step.update.seconds * 1e3,
+                        .paths = step.update.paths,
+                        .rays = step.update.rays});
+  std::vector<probes::StageMs> stages;
+  for (const metrics::StageTime& s : timings.stages) stages.push_back({s.name, s.ms});
+  counts.schedule =
+      probes::make_frame_record(frame, step.plan, step.update, std::move(stages), scheduler_.budget());
+}
+
+}  // namespace ddish::app

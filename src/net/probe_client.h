@@ -1,0 +1,82 @@
+// The client side of the probe stream (ZeroMQ): a SUB socket on the server's publisher and a
+// DEALER on its request socket (probe_server.h). It subscribes first, then asks for a snapshot,
+// and follows deltas from there (probe_mirror.h); a delta it cannot apply (a lost message, a
+// restarted server) makes it ask again. Its clocks:
+//   - staleness: milliseconds since the last message from the server; past stale_ms the server
+//     counts as lost (one log line), the probes are kept, and snapshot requests go on until a
+//     keyframe comes back (one log line);
+//   - the server's clock: each snapshot reply carries the server's steady-clock time, and the
+//     offset is the reply's time less the midpoint of the request's round trip, so the age of
+//     a probe update (server trace end -> now) does not assume a shared clock.
+// Every incoming message goes through decode_frame; a refused one is dropped and counted by
+// kind, with one log line per kind. A server of another scene is refused the same way.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "net/probe_frame.h"
+#include "probes/probe_volume.h"
+#include "scene/view.h"
+
+namespace ddish::net {
+
+// CurveZMQ: the server's public key and this client's key pair.
+struct CurveClientKeys {
+  std::string server_public_z85;
+  std::string public_z85;
+  std::string secret_z85;
+};
+
+struct ClientOptions {
+  std::string connect = "tcp://127.0.0.1:5570";
+  int heartbeat_ms = 250;
+  int stale_ms = 1000;          // no message for this long: the server is lost
+  int snapshot_retry_ms = 250;  // between snapshot requests while unsynced
+  std::function<void(const std::string&)> log;
+  std::optional<CurveClientKeys> curve;  // none: plaintext
+};
+
+struct ClientPoll {
+  std::vector<std::uint32_t> changed;  // probes set by the frames applied (increasing)
+  std::uint32_t frames_applied = 0;
+  std::uint32_t keyframes_applied = 0;
+  std::uint64_t bytes = 0;             // of every message received
+};
+
+class ProbeClient {
+ public:
+  // `volume` (borrowed) is the client's volume of its own scene, `scene_id` its identity.
+  ProbeClient(const ClientOptions& options, probes::ProbeVolume& volume, std::uint64_t scene_id);
+  ~ProbeClient();
+  ProbeClient(const ProbeClient&) = delete;
+  ProbeClient& operator=(const ProbeClient&) = delete;
+
+  // Takes every waiting message; waits up to wait_ms for the first one that brings probes
+  // (0: does not wait). Asks for snapshots as needed.
+  ClientPoll poll(int wait_ms);
+  void send_views(const std::vector<scene::View>& views);
+
+  bool synced() const;                 // holds a keyframe's state of the current server
+  bool ever_synced() const;            // has held probes from a server
+  std::uint64_t server_frame() const;  // the frame held
+  double stale_ms() const;             // since the last message (0 before the first)
+  // Age of the held probes: now less the end of their probe update, in the client's clock
+  // (nullopt before a clock offset is known).
+  std::optional<double> probe_age_ms() const;
+  std::uint64_t snapshots() const;     // keyframes applied
+  std::uint64_t reconnects() const;    // times the server came back after being lost
+  std::uint64_t rejected(RejectKind kind) const;
+  std::uint64_t rejected_total() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace ddish::net

@@ -1,0 +1,298 @@
+#include "net/probe_frame.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <zstd.h>
+
+#include "net/byte_io.h"
+
+namespace ddish::net {
+namespace {
+
+int coefficients_of(int order) { return (order + 1) * (order + 1); }
+
+void write_indices(ByteWriter& w, std::span<const std::uint32_t> indices) {
+  std::uint32_t next = 0;  // the smallest index the next one may have
+  for (std::uint32_t i : indices) {
+    w.varint(i - next);
+    next = i + 1;
+  }
+}
+
+DecodeResult reject(RejectKind kind, std::string detail) {
+  DecodeResult r;
+  r.reject = kind;
+  r.detail = std::move(detail);
+  return r;
+}
+
+// Reads `count` gap-coded indices below probe_count; the reject kind on failure.
+bool read_indices(ByteReader& r, std::uint32_t count, std::uint32_t probe_count,
+                  std::vector<std::uint32_t>& out, DecodeResult& failure) {
+  out.resize(count);
+  std::uint64_t next = 0;
+  for (std::uint32_t k = 0; k < count; ++k) {
+    std::uint32_t gap;
+    if (!r.varint(gap)) {
+      failure = reject(RejectKind::kSizeMismatch, "the index list runs past its payload");
+      return false;
+    }
+    const std::uint64_t index = next + gap;
+    if (index >= probe_count) {
+      failure = reject(RejectKind::kBadIndex,
+                       fmt::format("probe index {} outside the grid of {} probes", index, probe_count));
+      return false;
+    }
+    out[k] = std::uint32_t(index);
+    next = index + 1;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string reject_name(RejectKind kind) {
+  switch (kind) {
+    case RejectKind::kTruncated: return "truncated";
+    case RejectKind::kBadMagic: return "bad-magic";
+    case RejectKind::kBadVersion: return "bad-version";
+    case RejectKind::kBadHeader: return "bad-header";
+    case RejectKind::kSizeMismatch: return "size-mismatch";
+    case RejectKind::kBadIndex: return "bad-index";
+    case RejectKind::kBadCoefficients: return "bad-coefficients";
+    case RejectKind::kDecompression: return "decompression";
+    case RejectKind::kSceneMismatch: return "scene-mismatch";
+  }
+  return "unknown";
+}
+
+std::vector<std::uint8_t> encode_frame(const FrameHeader& h, std::span<const std::uint32_t> updated,
+                                       std::span<const std::uint8_t> probe_bytes,
+                                       std::span<const std::uint32_t> deactivated,
+                                       std::span<const std::uint8_t> deactivated_flags,
+                                       int zstd_level) {
+  const std::size_t per_probe = std::size_t(net::probe_bytes(h.encoding, h.sh_order));
+  if (probe_bytes.size() != updated.size() * per_probe || deactivated.size() != deactivated_flags.size())
+    throw std::invalid_argument("encode_frame: probe data does not match the index lists");
+  std::vector<std::uint8_t> payload;
+  payload.reserve(updated.size() * (per_probe + 1) + deactivated.size() * 2);
+  ByteWriter p(payload);
+  write_indices(p, updated);
+  write_indices(p, deactivated);
+  p.bytes(deactivated_flags);
+  p.bytes(probe_bytes);
+  const std::uint32_t raw_bytes = std::uint32_t(payload.size());
+  if (h.zstd) {
+    std::vector<std::uint8_t> packed(ZSTD_compressBound(payload.size()));
+    const std::size_t n =
+        ZSTD_compress(packed.data(), packed.size(), payload.data(), payload.size(), zstd_level);
+    if (ZSTD_isError(n)) throw std::runtime_error(std::string("zstd: ") + ZSTD_getErrorName(n));
+    packed.resize(n);
+    payload = std::move(packed);
+  }
+  std::vector<std::uint8_t> out;
+  out.reserve(kFrameHeaderBytes + payload.size());
+  ByteWriter w(out);
+  for (char c : kFrameMagic) w.u8(std::uint8_t(c));
+  w.u16(kProtocolVersion);
+  w.u8(std::uint8_t(h.kind));
+  w.u8(std::uint8_t(h.encoding));
+  w.u8(std::uint8_t(h.sh_order));
+  w.u8(h.zstd ? kFrameFlagZstd : 0);
+  w.u16(0);
+  for (std::uint32_t c : h.counts) w.u32(c);
+  w.u64(h.scene_id);
+  w.u64(h.stream_id);
+  w.u64(h.frame);
+  w.u64(h.base_frame);
+  w.i64(h.server_time_us);
+  w.f64(h.scene_time);
+  w.u32(std::uint32_t(updated.size()));
+  w.u32(std::uint32_t(deactivated.size()));
+  w.u32(std::uint32_t(payload.size()));
+  w.u32(raw_bytes);
+  w.bytes(payload);
+  return out;
+}
+
+std::vector<std::uint8_t> encode_frame(const ProbeFrame& f, std::uint32_t* saturated,
+                                       int zstd_level) {
+  const int n = coefficients_of(f.header.sh_order);
+  const std::size_t per_probe = std::size_t(probe_bytes(f.header.encoding, f.header.sh_order));
+  if (f.coefficients.size() != f.updated.size() * std::size_t(n))
+    throw std::invalid_argument("encode_frame: coefficients do not match the updated probes");
+  std::vector<std::uint8_t> bytes(f.updated.size() * per_probe);
+  std::uint32_t inexact = 0;
+  for (std::size_t k = 0; k < f.updated.size(); ++k)
+    if (!encode_probe(f.header.encoding, f.header.sh_order,
+                      std::span(f.coefficients).subspan(k * std::size_t(n), std::size_t(n)),
+                      std::span(bytes).subspan(k * per_probe, per_probe)))
+      ++inexact;
+  if (saturated) *saturated = inexact;
+  return encode_frame(f.header, f.updated, bytes, f.deactivated, f.deactivated_flags, zstd_level);
+}
+
+bool peek_header(std::span<const std::uint8_t> message, FrameHeader& h) {
+  if (message.size() < kFrameHeaderBytes || std::memcmp(message.data(), kFrameMagic, 4) != 0)
+    return false;
+  ByteReader r(message.subspan(4));
+  std::uint16_t version, reserved;
+  std::uint8_t kind, encoding, order, flags;
+  r.u16(version);
+  if (version != kProtocolVersion) return false;
+  r.u8(kind);
+  r.u8(encoding);
+  r.u8(order);
+  r.u8(flags);
+  r.u16(reserved);
+  h.kind = FrameKind(kind);
+  h.encoding = Encoding(encoding);
+  h.sh_order = order;
+  h.zstd = (flags & kFrameFlagZstd) != 0;
+  for (std::uint32_t& c : h.counts) r.u32(c);
+  r.u64(h.scene_id);
+  r.u64(h.stream_id);
+  r.u64(h.frame);
+  r.u64(h.base_frame);
+  r.i64(h.server_time_us);
+  r.f64(h.scene_time);
+  return true;
+}
+
+DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLimits& limits) {
+  if (message.size() < kFrameHeaderBytes)
+    return reject(RejectKind::kTruncated,
+                  fmt::format("{} bytes, shorter than the {}-byte header", message.size(), kFrameHeaderBytes));
+  if (std::memcmp(message.data(), kFrameMagic, 4) != 0)
+    return reject(RejectKind::kBadMagic, "not a DDPF probe frame");
+  ByteReader r(message.subspan(4, kFrameHeaderBytes - 4));
+  std::uint16_t version = 0, reserved = 0;
+  std::uint8_t kind = 0, encoding = 0, order = 0, flags = 0;
+  std::uint32_t updated = 0, deactivated = 0, payload_bytes = 0, raw_bytes = 0;
+  FrameHeader h;
+  r.u16(version);
+  if (version != kProtocolVersion)
+    return reject(RejectKind::kBadVersion,
+                  fmt::format("protocol version {}, this build speaks {}", version, kProtocolVersion));
+  r.u8(kind);
+  r.u8(encoding);
+  r.u8(order);
+  r.u8(flags);
+  r.u16(reserved);
+  for (std::uint32_t& c : h.counts) r.u32(c);
+  r.u64(h.scene_id);
+  r.u64(h.stream_id);
+  r.u64(h.frame);
+  r.u64(h.base_frame);
+  r.i64(h.server_time_us);
+  r.f64(h.scene_time);
+  r.u32(updated);
+  r.u32(deactivated);
+  r.u32(payload_bytes);
+  r.u32(raw_bytes);
+  if (kind > 1) return reject(RejectKind::kBadHeader, fmt::format("unknown frame kind {}", kind));
+  if (encoding >= kEncodingCount)
+    return reject(RejectKind::kBadHeader, fmt::format("unknown encoding {}", encoding));
+  if (order < 1 || order > 4)
+    return reject(RejectKind::kBadHeader, fmt::format("SH order {} outside 1..4", order));
+  if ((flags & ~kFrameFlagZstd) != 0 || reserved != 0)
+    return reject(RejectKind::kBadHeader, "reserved flag bits set");
+  const std::uint64_t probes = std::uint64_t(h.counts[0]) * h.counts[1] * h.counts[2];
+  if (probes == 0 || probes > kMaxGridProbes)
+    return reject(RejectKind::kBadHeader,
+                  fmt::format("grid {}x{}x{} outside 1..{} probes", h.counts[0], h.counts[1],
+                              h.counts[2], kMaxGridProbes));
+  if (!std::isfinite(h.scene_time))
+    return reject(RejectKind::kBadHeader, "scene time is not finite");
+  h.kind = FrameKind(kind);
+  h.encoding = Encoding(encoding);
+  h.sh_order = order;
+  h.zstd = (flags & kFrameFlagZstd) != 0;
+  if (h.kind == FrameKind::kKeyframe ? h.base_frame != h.frame : h.base_frame >= h.frame)
+    return reject(RejectKind::kBadHeader,
+                  fmt::format("base frame {} of frame {} is not what a {} has", h.base_frame, h.frame,
+                              h.kind == FrameKind::kKeyframe ? "keyframe" : "delta"));
+  if (std::uint64_t(updated) + deactivated > probes)
+    return reject(RejectKind::kSizeMismatch,
+                  fmt::format("{} updated + {} deactivated probes in a grid of {}", updated,
+                              deactivated, probes));
+  if (h.kind == FrameKind::kKeyframe && deactivated != 0)
+    return reject(RejectKind::kSizeMismatch, "a keyframe lists deactivated probes");
+  const std::size_t body = message.size() - kFrameHeaderBytes;
+  if (body < payload_bytes)
+    return reject(RejectKind::kTruncated,
+                  fmt::format("payload of {} bytes announced, {} present", payload_bytes, body));
+  if (body > payload_bytes)
+    return reject(RejectKind::kSizeMismatch,
+                  fmt::format("{} bytes after a payload of {}", body - payload_bytes, payload_bytes));
+  // The uncompressed size is bounded by the counts: 1..5 bytes per index, one flag byte per
+  // deactivated probe, fixed bytes per updated probe.
+  const std::size_t per_probe = std::size_t(probe_bytes(h.encoding, h.sh_order));
+  const std::uint64_t fixed = std::uint64_t(deactivated) + std::uint64_t(updated) * per_probe;
+  const std::uint64_t indices = std::uint64_t(updated) + deactivated;
+  if (raw_bytes < fixed + indices || raw_bytes > fixed + 5 * indices)
+    return reject(RejectKind::kSizeMismatch,
+                  fmt::format("payload of {} bytes for {} updated and {} deactivated probes",
+                              raw_bytes, updated, deactivated));
+  if (raw_bytes > limits.max_payload_bytes)
+    return reject(RejectKind::kSizeMismatch,
+                  fmt::format("payload of {} bytes beyond the limit of {}", raw_bytes,
+                              limits.max_payload_bytes));
+  if (!h.zstd && raw_bytes != payload_bytes)
+    return reject(RejectKind::kSizeMismatch, "uncompressed payload sizes differ");
+  std::span<const std::uint8_t> payload = message.subspan(kFrameHeaderBytes);
+  std::vector<std::uint8_t> inflated;
+  if (h.zstd) {
+    const unsigned long long content = ZSTD_getFrameContentSize(payload.data(), payload.size());
+    if (content == ZSTD_CONTENTSIZE_ERROR || content == ZSTD_CONTENTSIZE_UNKNOWN || content != raw_bytes)
+      return reject(RejectKind::kDecompression, "zstd frame size missing or unlike the header's");
+    inflated.resize(raw_bytes);
+    const std::size_t n = ZSTD_decompress(inflated.data(), inflated.size(), payload.data(), payload.size());
+    if (ZSTD_isError(n)) return reject(RejectKind::kDecompression, std::string("zstd: ") + ZSTD_getErrorName(n));
+    if (n != raw_bytes) return reject(RejectKind::kDecompression, "zstd output shorter than announced");
+    payload = inflated;
+  }
+  DecodeResult result;
+  ProbeFrame& f = result.frame;
+  f.header = h;
+  ByteReader p(payload);
+  DecodeResult failure;
+  if (!read_indices(p, updated, std::uint32_t(probes), f.updated, failure) ||
+      !read_indices(p, deactivated, std::uint32_t(probes), f.deactivated, failure))
+    return failure;
+  // Disjoint: a probe is either updated or deactivated.
+  for (std::size_t a = 0, b = 0; a < f.updated.size() && b < f.deactivated.size();) {
+    if (f.updated[a] == f.deactivated[b])
+      return reject(RejectKind::kBadIndex,
+                    fmt::format("probe {} both updated and deactivated", f.updated[a]));
+    f.updated[a] < f.deactivated[b] ? ++a : ++b;
+  }
+  std::span<const std::uint8_t> flag_bytes, coefficient_bytes;
+  if (!p.bytes(deactivated, flag_bytes))
+    return reject(RejectKind::kSizeMismatch, "payload ends inside the deactivated probes' flags");
+  for (std::uint8_t fl : flag_bytes)
+    if ((fl & kWireFlagInactive) == 0 || (fl & ~(kWireFlagInactive | kWireFlagInsideGeometry)) != 0)
+      return reject(RejectKind::kBadCoefficients,
+                    fmt::format("deactivated probe flags {:#04x}", fl));
+  f.deactivated_flags.assign(flag_bytes.begin(), flag_bytes.end());
+  if (p.remaining() != std::size_t(updated) * per_probe)
+    return reject(RejectKind::kSizeMismatch,
+                  fmt::format("{} coefficient bytes for {} probes of {} bytes", p.remaining(),
+                              updated, per_probe));
+  p.bytes(p.remaining(), coefficient_bytes);
+  const std::size_t n = std::size_t(coefficients_of(h.sh_order));
+  f.coefficients.resize(std::size_t(updated) * n);
+  for (std::size_t k = 0; k < updated; ++k)
+    if (!decode_probe(h.encoding, h.sh_order, coefficient_bytes.subspan(k * per_probe, per_probe),
+                      std::span(f.coefficients).subspan(k * n, n)))
+      return reject(RejectKind::kBadCoefficients,
+                    fmt::format("probe {}: not a valid {} code", f.updated[k], encoding_name(h.encoding)));
+  result.ok = true;
+  return result;
+}
+
+}  // namespace ddish::net

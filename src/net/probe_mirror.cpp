@@ -1,0 +1,62 @@
+#include "net/probe_mirror.h"
+
+#include <algorithm>
+
+namespace ddish::net {
+namespace {
+
+void set_probe(probes::ProbeVolume& volume, std::uint32_t i, const glm::vec3* coefficients) {
+  std::span<glm::vec3> dst = volume.coefficients(i);
+  std::copy(coefficients, coefficients + dst.size(), dst.begin());
+  probes::ProbeState& s = volume.state(i);
+  s.flags = 0;  // active and classified: the server traced it
+  s.updates = std::max(s.updates, 1u);
+  s.age = 0;
+}
+
+}  // namespace
+
+ProbeMirror::ProbeMirror(probes::ProbeVolume& volume, std::uint64_t scene_id)
+    : volume_(volume), scene_id_(scene_id) {}
+
+bool ProbeMirror::matches(const FrameHeader& h) const {
+  const glm::ivec3 c = volume_.grid().counts();
+  return h.scene_id == scene_id_ && h.sh_order == volume_.sh_order() &&
+         h.counts[0] == std::uint32_t(c.x) && h.counts[1] == std::uint32_t(c.y) &&
+         h.counts[2] == std::uint32_t(c.z);
+}
+
+ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>& changed) {
+  changed.clear();
+  if (!matches(f.header)) return ApplyOutcome::kSceneMismatch;
+  const std::size_t n = std::size_t(volume_.coefficient_count());
+  if (f.header.kind == FrameKind::kKeyframe) {
+    if (synced_ && f.header.stream_id == stream_ && f.header.frame <= frame_) return ApplyOutcome::kOld;
+    std::size_t next = 0;
+    for (std::uint32_t i = 0; i < volume_.probe_count(); ++i) {
+      if (next < f.updated.size() && f.updated[next] == i) {
+        set_probe(volume_, i, f.coefficients.data() + next * n);
+        ++next;
+      } else {
+        volume_.deactivate(i, false);
+      }
+      changed.push_back(i);
+    }
+  } else {
+    if (!synced_ || f.header.stream_id != stream_) return ApplyOutcome::kGap;
+    if (f.header.frame <= frame_) return ApplyOutcome::kOld;
+    if (f.header.base_frame != frame_) return ApplyOutcome::kGap;
+    for (std::size_t k = 0; k < f.updated.size(); ++k)
+      set_probe(volume_, f.updated[k], f.coefficients.data() + k * n);
+    for (std::size_t k = 0; k < f.deactivated.size(); ++k)
+      volume_.deactivate(f.deactivated[k], (f.deactivated_flags[k] & kWireFlagInsideGeometry) != 0);
+    std::merge(f.updated.begin(), f.updated.end(), f.deactivated.begin(), f.deactivated.end(),
+               std::back_inserter(changed));
+  }
+  synced_ = true;
+  frame_ = f.header.frame;
+  stream_ = f.header.stream_id;
+  return ApplyOutcome::kApplied;
+}
+
+}  // namespace ddish::net

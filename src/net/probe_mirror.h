@@ -1,0 +1,54 @@
+// The client side of the probe stream: a probe volume that follows the server's frames.
+//
+// A keyframe replaces the whole state (its probes active with their coefficients, every other
+// probe inactive); a delta applies only to the frame it was made from (its base frame), so a
+// client never mixes states: an older frame is dropped (the Clone pattern's "updates older than
+// the snapshot"), and a delta from a frame the client does not hold says that a snapshot is
+// needed. A keyframe of another stream (a restarted server) replaces the state whatever its frame
+// number; a delta of another stream is a gap. Frames of another scene or grid are never applied.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "net/probe_frame.h"
+#include "probes/probe_volume.h"
+
+namespace ddish::net {
+
+enum class ApplyOutcome {
+  kApplied,
+  kOld,            // not newer than what the mirror holds: dropped
+  kGap,            // a delta from a frame the mirror does not hold: take a snapshot
+  kSceneMismatch,  // another scene identity, grid or SH order: refused
+};
+
+class ProbeMirror {
+ public:
+  // `volume` (borrowed) is the client's own volume of its scene; scene_id its identity.
+  ProbeMirror(probes::ProbeVolume& volume, std::uint64_t scene_id);
+
+  // Applies a decoded frame; `changed` receives the probes whose coefficients or flags it set
+  // (increasing), for the renderer's upload.
+  ApplyOutcome apply(const ProbeFrame& frame, std::vector<std::uint32_t>& changed);
+
+  // Whether a keyframe has been applied, and the server frame held (valid once synced).
+  bool synced() const { return synced_; }
+  std::uint64_t frame() const { return frame_; }
+  std::uint64_t stream() const { return stream_; }
+  // Forgets the held frame, keeping the probes (after a lost server: the next keyframe,
+  // whatever its frame number, is taken).
+  void desync() { synced_ = false; }
+
+  // Whether the frame's scene identity, grid and order are the mirror's.
+  bool matches(const FrameHeader& header) const;
+
+ private:
+  probes::ProbeVolume& volume_;
+  std::uint64_t scene_id_;
+  bool synced_ = false;
+  std::uint64_t frame_ = 0;
+  std::uint64_t stream_ = 0;
+};
+
+}  // namespace ddish::net

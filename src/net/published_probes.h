@@ -1,0 +1,72 @@
+// The server side of the change-driven probe stream: what every subscriber holds, and the delta
+// that brings them to the volume's current state.
+//
+// A probe is re-sent when one of its coefficients moved more than
+//   max(threshold × max_c |c_00,c|, floor)
+// since the value it was last sent from (the fp32 source, not the decoded copy: a probe that
+// is not traced is never re-sent for its own rounding). A subscriber's probe therefore differs
+// from the server's by at most that amount plus the encoding's error (probe_encoding.h).
+// threshold 0 and floor 0: every probe whose coefficients changed at all is sent.
+//
+// Probes that were never sent or became inactive are not held: a keyframe lists only the held
+// probes (the others are inactive for the client), and a delta announces a probe that became
+// inactive once, with its flags, never its coefficients. The snapshot (a keyframe of the last
+// published frame) is built from the exact bytes that were sent, so a late joiner holds what
+// every other subscriber holds and later deltas keep the same bound for it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "net/probe_frame.h"
+#include "probes/probe_volume.h"
+
+namespace ddish::net {
+
+struct StreamOptions {
+  Encoding encoding = Encoding::kCompact;
+  bool zstd = false;
+  int zstd_level = 3;
+  float threshold = 0.0f;  // relative to the probe's largest L0 channel
+  float floor = 0.0f;      // absolute, in the coefficients' units
+};
+
+struct PublishStats {
+  std::uint32_t sent = 0;         // probes with coefficients in the delta
+  std::uint32_t deactivated = 0;  // probes announced inactive
+  std::uint32_t held_back = 0;    // changed, but within the threshold
+  std::uint32_t saturated = 0;    // probes the encoding could not represent exactly
+  std::size_t bytes = 0;          // of the message
+};
+
+class PublishedProbes {
+ public:
+  // stream_id: this server run's (probe_frame.h), drawn at random at start.
+  PublishedProbes(const probes::ProbeGrid& grid, int sh_order, std::uint64_t scene_id,
+                  std::uint64_t stream_id, const StreamOptions& options);
+
+  // Frame `frame` (> the last published one): the delta from the last published frame to
+  // `volume` (same grid and order). server_time_us: when its probe update ended.
+  std::vector<std::uint8_t> publish(const probes::ProbeVolume& volume, std::uint64_t frame,
+                                    std::int64_t server_time_us, double scene_time,
+                                    PublishStats* stats = nullptr);
+
+  // A keyframe of what subscribers hold after the last published frame (frame 0, empty, before
+  // the first publish).
+  std::vector<std::uint8_t> snapshot() const;
+
+  std::uint64_t frame() const { return header_.frame; }
+  std::uint32_t held_probes() const;
+  const StreamOptions& options() const { return options_; }
+
+ private:
+  FrameHeader header_;  // of the last published frame
+  StreamOptions options_;
+  int coefficient_count_;
+  std::size_t probe_bytes_;
+  std::vector<std::uint8_t> held_;        // per probe: 1 while subscribers hold it
+  std::vector<std::uint8_t> held_bytes_;  // per probe: the bytes last sent
+  std::vector<glm::vec3> source_;         // per probe: the coefficients they were sent from
+};
+
+}  // namespace ddish::net

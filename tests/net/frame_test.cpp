@@ -1,0 +1,235 @@
+// Probe frames: round trips of keyframes and deltas (every encoding, with and without zstd), and
+// every rejection kind of the decoder on hand-made bad messages.
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "net/byte_io.h"
+#include "net/probe_frame.h"
+#include "net_test_util.h"
+
+namespace ddish::net {
+namespace {
+
+ProbeFrame sample_frame(Encoding encoding, bool zstd, FrameKind kind = FrameKind::kDelta) {
+  ProbeFrame f;
+  f.header.kind = kind;
+  f.header.encoding = encoding;
+  f.header.sh_order = 2;
+  f.header.zstd = zstd;
+  f.header.counts[0] = 4, f.header.counts[1] = 3, f.header.counts[2] = 2;  // 24 probes
+  f.header.scene_id = 0x1234567890abcdefull;
+  f.header.stream_id = 0x5eed;
+  f.header.frame = 42;
+  f.header.base_frame = kind == FrameKind::kDelta ? 41 : 42;
+  f.header.server_time_us = 987654321;
+  f.header.scene_time = 1.25;
+  std::mt19937_64 rng(7);
+  f.updated = {0, 1, 2, 7, 8, 20, 23};
+  for (std::size_t k = 0; k < f.updated.size(); ++k)
+    for (const glm::vec3& v : test::coefficients_of(test::radiance_probe(rng, 2, 1.0f + float(k))))
+      f.coefficients.push_back(v);
+  if (kind == FrameKind::kDelta) {
+    f.deactivated = {3, 21};
+    f.deactivated_flags = {kWireFlagInactive, kWireFlagInactive | kWireFlagInsideGeometry};
+  }
+  return f;
+}
+
+TEST(Frame, RoundTripEveryEncodingAndCompression) {
+  for (int e = 0; e < kEncodingCount; ++e)
+    for (bool zstd : {false, true})
+      for (FrameKind kind : {FrameKind::kKeyframe, FrameKind::kDelta}) {
+        const ProbeFrame f = sample_frame(Encoding(e), zstd, kind);
+        const std::vector<std::uint8_t> bytes = encode_frame(f);
+        const DecodeResult r = decode_frame(bytes);
+        ASSERT_TRUE(r.ok) << r.detail;
+        const FrameHeader& h = r.frame.header;
+        EXPECT_EQ(h.kind, kind);
+        EXPECT_EQ(h.encoding, Encoding(e));
+        EXPECT_EQ(h.zstd, zstd);
+        EXPECT_EQ(h.scene_id, f.header.scene_id);
+        EXPECT_EQ(h.stream_id, f.header.stream_id);
+        EXPECT_EQ(h.frame, f.header.frame);
+        EXPECT_EQ(h.base_frame, f.header.base_frame);
+        EXPECT_EQ(h.server_time_us, f.header.server_time_us);
+        EXPECT_EQ(h.scene_time, f.header.scene_time);
+        EXPECT_EQ(h.probe_count(), 24u);
+        EXPECT_EQ(r.frame.updated, f.updated);
+        EXPECT_EQ(r.frame.deactivated, f.deactivated);
+        EXPECT_EQ(r.frame.deactivated_flags, f.deactivated_flags);
+        ASSERT_EQ(r.frame.coefficients.size(), f.coefficients.size());
+        for (std::size_t j = 0; j < f.coefficients.size(); ++j)  // loosest bound: compact L2
+          for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(r.frame.coefficients[j][c], f.coefficients[j][c],
+                        0.0178f * f.coefficients[j - j % 9][c] + 1e-6f);
+        if (!zstd) {  // 88 header + 7 + 2 index bytes + 2 flags + probes
+          EXPECT_EQ(bytes.size(), kFrameHeaderBytes + (kind == FrameKind::kDelta ? 11u : 7u) +
+                                      7u * std::size_t(probe_bytes(Encoding(e), 2)));
+        }
+      }
+}
+
+TEST(Frame, EmptyDeltaIsTheHeaderAndIndexGapsAreOneByte) {
+  ProbeFrame f = sample_frame(Encoding::kCompact, false);
+  f.updated.clear();
+  f.coefficients.clear();
+  f.deactivated.clear();
+  f.deactivated_flags.clear();
+  EXPECT_EQ(encode_frame(f).size(), kFrameHeaderBytes);
+  // 200 consecutive probes past index 300: 2 bytes for the first gap, 1 for each other.
+  f.header.counts[0] = 1000, f.header.counts[1] = 1, f.header.counts[2] = 1;
+  for (std::uint32_t i = 300; i < 500; ++i) f.updated.push_back(i);
+  f.coefficients.assign(200 * 9, glm::vec3(1.0f, 0.0f, 0.0f));
+  EXPECT_EQ(encode_frame(f).size(), kFrameHeaderBytes + 2 + 199 + 200 * 28);
+}
+
+// --- rejections -----------------------------------------------------------------------------
+
+std::vector<std::uint8_t> good_message(bool zstd = false) {
+  return encode_frame(sample_frame(Encoding::kHalf, zstd));
+}
+
+void put32(std::vector<std::uint8_t>& m, std::size_t at, std::uint32_t v) {
+  for (int i = 0; i < 4; ++i) m[at + std::size_t(i)] = std::uint8_t(v >> (8 * i));
+}
+void put64(std::vector<std::uint8_t>& m, std::size_t at, std::uint64_t v) {
+  for (int i = 0; i < 8; ++i) m[at + std::size_t(i)] = std::uint8_t(v >> (8 * i));
+}
+
+void expect_reject(const std::vector<std::uint8_t>& m, RejectKind kind) {
+  const DecodeResult r = decode_frame(m);
+  EXPECT_FALSE(r.ok);
+  EXPECT_EQ(r.reject, kind) << "got " << reject_name(r.reject) << ": " << r.detail;
+  EXPECT_FALSE(r.detail.empty());
+}
+
+TEST(FrameReject, Truncated) {
+  std::vector<std::uint8_t> m = good_message();
+  expect_reject({m.begin(), m.begin() + 87}, RejectKind::kTruncated);
+  expect_reject({}, RejectKind::kTruncated);
+  for (std::size_t cut = kFrameHeaderBytes; cut < m.size(); cut += 7)
+    expect_reject({m.begin(), m.begin() + std::ptrdiff_t(cut)}, RejectKind::kTruncated);
+}
+
+TEST(FrameReject, MagicAndVersion) {
+  std::vector<std::uint8_t> m = good_message();
+  m[0] = 'X';
+  expect_reject(m, RejectKind::kBadMagic);
+  m = good_message();
+  m[4] = 2;
+  expect_reject(m, RejectKind::kBadVersion);
+}
+
+TEST(FrameReject, BadHeaderFields) {
+  const auto with = [](std::size_t at, std::uint8_t v) {
+    std::vector<std::uint8_t> m = good_message();
+    m[at] = v;
+    return m;
+  };
+  expect_reject(with(6, 2), RejectKind::kBadHeader);   // kind
+  expect_reject(with(7, 3), RejectKind::kBadHeader);   // encoding
+  expect_reject(with(8, 0), RejectKind::kBadHeader);   // order
+  expect_reject(with(8, 5), RejectKind::kBadHeader);
+  expect_reject(with(9, 2), RejectKind::kBadHeader);   // flags
+  expect_reject(with(10, 1), RejectKind::kBadHeader);  // reserved
+  std::vector<std::uint8_t> m = good_message();
+  put32(m, 12, 0);  // empty grid
+  expect_reject(m, RejectKind::kBadHeader);
+  m = good_message();
+  put32(m, 12, 1u << 12), put32(m, 16, 1u << 12), put32(m, 20, 2);  // 2^25 probes
+  expect_reject(m, RejectKind::kBadHeader);
+  m = good_message();
+  put64(m, 48, 42);  // a delta whose base is its own frame
+  expect_reject(m, RejectKind::kBadHeader);
+  m = good_message();
+  put64(m, 64, 0x7ff8000000000000ull);  // NaN scene time
+  expect_reject(m, RejectKind::kBadHeader);
+}
+
+TEST(FrameReject, SizeMismatch) {
+  std::vector<std::uint8_t> m = good_message();
+  m.push_back(0);  // a byte after the payload
+  expect_reject(m, RejectKind::kSizeMismatch);
+  m = good_message();
+  put32(m, 72, 25);  // more updated probes than the grid holds
+  expect_reject(m, RejectKind::kSizeMismatch);
+  m = good_message();
+  put32(m, 72, 6);  // one probe fewer than the payload carries
+  expect_reject(m, RejectKind::kSizeMismatch);
+  m = good_message();
+  put32(m, 84, 5000);  // uncompressed size unlike the payload's
+  expect_reject(m, RejectKind::kSizeMismatch);
+  ProbeFrame key = sample_frame(Encoding::kHalf, false, FrameKind::kKeyframe);
+  m = encode_frame(key);
+  put32(m, 76, 1);  // a keyframe announcing a deactivated probe
+  expect_reject(m, RejectKind::kSizeMismatch);
+  DecodeLimits tight;
+  tight.max_payload_bytes = 100;
+  const DecodeResult r = decode_frame(good_message(), tight);
+  EXPECT_EQ(r.reject, RejectKind::kSizeMismatch);
+}
+
+TEST(FrameReject, BadIndices) {
+  ProbeFrame f = sample_frame(Encoding::kHalf, false);
+  f.updated.back() = 24;  // the grid has 24 probes
+  expect_reject(encode_frame(f), RejectKind::kBadIndex);
+  f = sample_frame(Encoding::kHalf, false);
+  f.deactivated = {2, 21};  // probe 2 is also updated
+  expect_reject(encode_frame(f), RejectKind::kBadIndex);
+  // A gap that overflows past 2^32 is out of the grid too.
+  std::vector<std::uint8_t> m = good_message();
+  m[kFrameHeaderBytes + 1] = 0xff, m[kFrameHeaderBytes + 2] = 0x0f;  // not a 1-byte varint now
+  const DecodeResult r = decode_frame(m);
+  EXPECT_FALSE(r.ok);
+}
+
+TEST(FrameReject, BadCoefficients) {
+  std::vector<std::uint8_t> m = good_message();
+  // The last probe's last half becomes Inf; then NaN.
+  m[m.size() - 1] = 0x7c, m[m.size() - 2] = 0x00;
+  expect_reject(m, RejectKind::kBadCoefficients);
+  m[m.size() - 1] = 0xff, m[m.size() - 2] = 0xff;
+  expect_reject(m, RejectKind::kBadCoefficients);
+  ProbeFrame f = sample_frame(Encoding::kHalf, false);
+  f.deactivated_flags[0] = 0x04;  // not a flag the stream carries
+  expect_reject(encode_frame(f), RejectKind::kBadCoefficients);
+}
+
+TEST(FrameReject, Decompression) {
+  std::vector<std::uint8_t> m = good_message(true);
+  m[kFrameHeaderBytes + 6] ^= 0xff;  // inside the zstd frame
+  const DecodeResult r = decode_frame(m);
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(r.reject == RejectKind::kDecompression || r.reject == RejectKind::kBadIndex ||
+              r.reject == RejectKind::kSizeMismatch || r.reject == RejectKind::kBadCoefficients)
+      << reject_name(r.reject);
+  m = good_message(true);
+  m[kFrameHeaderBytes] ^= 0xff;  // zstd magic
+  expect_reject(m, RejectKind::kDecompression);
+}
+
+TEST(FrameReject, RandomCorruptionNeverCrashes) {
+  std::mt19937_64 rng(11);
+  int rejected = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    std::vector<std::uint8_t> m = good_message(trial % 2 == 0);
+    const int flips = 1 + int(rng() % 4);
+    for (int k = 0; k < flips; ++k) m[rng() % m.size()] ^= std::uint8_t(1u << (rng() % 8));
+    const DecodeResult r = decode_frame(m);
+    if (!r.ok) {
+      ++rejected;
+      continue;
+    }
+    for (const glm::vec3& v : r.frame.coefficients)
+      for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(v[c]));
+    for (std::uint32_t i : r.frame.updated) ASSERT_LT(i, r.frame.header.probe_count());
+  }
+  EXPECT_GT(rejected, 1000);
+}
+
+}  // namespace
+}  // namespace ddish::net

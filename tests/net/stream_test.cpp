@@ -1,0 +1,181 @@
+// The change-driven stream: what the server publishes (PublishedProbes) and what a client's
+// mirror makes of it (ProbeMirror): empty deltas for a static volume, the threshold's error
+// bound, late joiners holding what everyone holds, deactivation, old / gap / other-scene frames.
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "net/probe_mirror.h"
+#include "net/published_probes.h"
+#include "net_test_util.h"
+
+namespace ddish::net {
+namespace {
+
+constexpr std::uint64_t kScene = 77;
+
+probes::ProbeVolume make_volume(std::mt19937_64& rng) {
+  probes::ProbeVolume v(probes::ProbeGrid(scene::Aabb{glm::vec3(0.0f), glm::vec3(4.0f)}, {4, 4, 4}), 2);
+  for (std::uint32_t i = 0; i < v.probe_count(); ++i) {
+    v.set_sh(i, test::radiance_probe(rng, 2, 1.0f));
+    v.state(i).flags = 0;
+    v.state(i).updates = 1;
+  }
+  return v;
+}
+
+probes::ProbeVolume client_volume() {
+  return probes::ProbeVolume(probes::ProbeGrid(scene::Aabb{glm::vec3(0.0f), glm::vec3(4.0f)}, {4, 4, 4}), 2);
+}
+
+DecodeResult decode_ok(const std::vector<std::uint8_t>& m) {
+  DecodeResult r = decode_frame(m);
+  EXPECT_TRUE(r.ok) << r.detail;
+  return r;
+}
+
+TEST(Stream, StaticVolumeSendsOnceThenHeadersOnly) {
+  std::mt19937_64 rng(1);
+  probes::ProbeVolume server = make_volume(rng);
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {.encoding = Encoding::kCompact, .threshold = 0.01f});
+  PublishStats s;
+  const auto first = pub.publish(server, 1, 100, 0.0, &s);
+  EXPECT_EQ(s.sent, 64u);
+  EXPECT_EQ(first.size(), kFrameHeaderBytes + 64 + 64 * 28);  // 1-byte gaps
+  for (std::uint64_t frame = 2; frame < 10; ++frame) {
+    const auto next = pub.publish(server, frame, 100 + std::int64_t(frame), 0.0, &s);
+    EXPECT_EQ(s.sent, 0u);
+    EXPECT_EQ(next.size(), kFrameHeaderBytes);
+  }
+  EXPECT_EQ(pub.held_probes(), 64u);
+}
+
+// A client that follows every delta stays within threshold × L0 + the encoding's error of the
+// server's probes, while the server sends fewer probes than change.
+TEST(Stream, ThresholdBoundsTheClientError) {
+  std::mt19937_64 rng(2);
+  probes::ProbeVolume server = make_volume(rng);
+  probes::ProbeVolume client = client_volume();
+  ProbeMirror mirror(client, kScene);
+  const float threshold = 0.02f;
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {.encoding = Encoding::kHalf, .threshold = threshold});
+  std::normal_distribution<float> noise(0.0f, 0.004f);
+  std::uint64_t sent = 0, held_back = 0;
+  std::vector<std::uint32_t> changed;
+  ASSERT_EQ(mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  for (std::uint64_t frame = 1; frame <= 60; ++frame) {
+    for (std::uint32_t i = 0; i < server.probe_count(); ++i)  // a slow random walk
+      for (glm::vec3& c : server.coefficients(i)) c += glm::vec3(noise(rng), noise(rng), noise(rng));
+    PublishStats s;
+    const DecodeResult r = decode_ok(pub.publish(server, frame, 0, 0.0, &s));
+    sent += s.sent;
+    held_back += s.held_back;
+    ASSERT_EQ(mirror.apply(r.frame, changed), ApplyOutcome::kApplied);
+    for (std::uint32_t i = 0; i < server.probe_count(); ++i) {
+      const auto a = server.coefficients(i), b = client.coefficients(i);
+      const float l0 = std::max({std::fabs(a[0].x), std::fabs(a[0].y), std::fabs(a[0].z)});
+      for (std::size_t j = 0; j < a.size(); ++j)
+        for (int c = 0; c < 3; ++c)  // threshold, plus fp16 rounding of what was sent
+          ASSERT_LE(std::fabs(a[j][c] - b[j][c]),
+                    threshold * l0 + (std::fabs(a[j][c]) + threshold * l0) * 0x1p-11f + 1e-7f);
+    }
+  }
+  EXPECT_GT(held_back, 0u);
+  EXPECT_LT(sent, 60u * 64u);
+}
+
+TEST(Stream, LateJoinerHoldsWhatEveryoneHolds) {
+  std::mt19937_64 rng(3);
+  probes::ProbeVolume server = make_volume(rng);
+  probes::ProbeVolume early = client_volume(), late = client_volume();
+  ProbeMirror early_mirror(early, kScene), late_mirror(late, kScene);
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {.encoding = Encoding::kCompact, .zstd = true, .threshold = 0.01f});
+  std::vector<std::uint32_t> changed;
+  ASSERT_EQ(early_mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  std::normal_distribution<float> noise(0.0f, 0.01f);
+  for (std::uint64_t frame = 1; frame <= 20; ++frame) {
+    for (std::uint32_t i = frame % 3; i < server.probe_count(); i += 3)
+      for (glm::vec3& c : server.coefficients(i)) c += glm::vec3(noise(rng));
+    ASSERT_EQ(early_mirror.apply(decode_ok(pub.publish(server, frame, 0, 0.0)).frame, changed),
+              ApplyOutcome::kApplied);
+  }
+  const DecodeResult snap = decode_ok(pub.snapshot());
+  EXPECT_EQ(snap.frame.header.kind, FrameKind::kKeyframe);
+  EXPECT_EQ(snap.frame.header.frame, 20u);
+  ASSERT_EQ(late_mirror.apply(snap.frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(changed.size(), 64u);  // a keyframe sets every probe
+  for (std::uint32_t i = 0; i < 64; ++i)
+    for (std::size_t j = 0; j < 9; ++j) ASSERT_EQ(early.coefficients(i)[j], late.coefficients(i)[j]);
+  // Both take the next delta.
+  const DecodeResult next = decode_ok(pub.publish(server, 21, 0, 0.0));
+  EXPECT_EQ(early_mirror.apply(next.frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(late_mirror.apply(next.frame, changed), ApplyOutcome::kApplied);
+}
+
+TEST(Stream, InactiveProbesAreAnnouncedOnceAndNeverSent) {
+  std::mt19937_64 rng(4);
+  probes::ProbeVolume server = make_volume(rng);
+  server.deactivate(5, true);
+  server.state(9).updates = 0;  // active, never traced: nothing to say
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {});
+  probes::ProbeVolume client = client_volume();
+  ProbeMirror mirror(client, kScene);
+  std::vector<std::uint32_t> changed;
+  ASSERT_EQ(mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  DecodeResult r = decode_ok(pub.publish(server, 1, 0, 0.0));
+  EXPECT_EQ(r.frame.updated.size(), 62u);
+  EXPECT_TRUE(r.frame.deactivated.empty());  // never held, so nothing to take back
+  ASSERT_EQ(mirror.apply(r.frame, changed), ApplyOutcome::kApplied);
+  EXPECT_FALSE(client.state(5).active());
+  server.deactivate(12, true);
+  PublishStats s;
+  r = decode_ok(pub.publish(server, 2, 0, 0.0, &s));
+  EXPECT_EQ(s.sent, 0u);
+  ASSERT_EQ(r.frame.deactivated, std::vector<std::uint32_t>{12});
+  EXPECT_EQ(r.frame.deactivated_flags[0], kWireFlagInactive | kWireFlagInsideGeometry);
+  ASSERT_EQ(mirror.apply(r.frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(changed, std::vector<std::uint32_t>{12});
+  EXPECT_FALSE(client.state(12).active());
+  EXPECT_TRUE(client.state(12).inside_geometry());
+  EXPECT_EQ(client.coefficients(12)[0], glm::vec3(0.0f));
+  r = decode_ok(pub.publish(server, 3, 0, 0.0));
+  EXPECT_TRUE(r.frame.deactivated.empty());
+  const DecodeResult snap = decode_ok(pub.snapshot());
+  EXPECT_EQ(snap.frame.updated.size(), 61u);  // 64 less 5, 9 and 12
+}
+
+TEST(Mirror, OldGapAndOtherSceneFrames) {
+  std::mt19937_64 rng(5);
+  probes::ProbeVolume server = make_volume(rng);
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {});
+  probes::ProbeVolume client = client_volume();
+  ProbeMirror mirror(client, kScene);
+  std::vector<std::uint32_t> changed;
+  const auto d1 = pub.publish(server, 1, 0, 0.0);
+  EXPECT_EQ(mirror.apply(decode_ok(d1).frame, changed), ApplyOutcome::kGap);  // no snapshot yet
+  ASSERT_EQ(mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(mirror.frame(), 1u);
+  EXPECT_EQ(mirror.apply(decode_ok(d1).frame, changed), ApplyOutcome::kOld);  // older than it
+  pub.publish(server, 2, 0, 0.0);  // lost
+  EXPECT_EQ(mirror.apply(decode_ok(pub.publish(server, 3, 0, 0.0)).frame, changed), ApplyOutcome::kGap);
+  // Another scene, another grid.
+  PublishedProbes other(server.grid(), 2, kScene + 1, 1, {});
+  EXPECT_EQ(mirror.apply(decode_ok(other.snapshot()).frame, changed), ApplyOutcome::kSceneMismatch);
+  probes::ProbeVolume coarse(probes::ProbeGrid(scene::Aabb{glm::vec3(0.0f), glm::vec3(4.0f)}, {2, 4, 8}), 2);
+  PublishedProbes regridded(coarse.grid(), 2, kScene, 1, {});
+  EXPECT_EQ(mirror.apply(decode_ok(regridded.snapshot()).frame, changed), ApplyOutcome::kSceneMismatch);
+  EXPECT_EQ(mirror.frame(), 1u);
+  // A restarted server (another stream): its delta is a gap, its keyframe is taken although
+  // its frame number is lower.
+  PublishedProbes restarted(server.grid(), 2, kScene, 2, {});
+  restarted.publish(server, 1, 0, 0.0);
+  EXPECT_EQ(mirror.apply(decode_ok(restarted.publish(server, 2, 0, 0.0)).frame, changed), ApplyOutcome::kGap);
+  EXPECT_EQ(mirror.apply(decode_ok(restarted.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(mirror.stream(), 2u);
+  EXPECT_EQ(mirror.frame(), 2u);
+}
+
+}  // namespace
+}  // namespace ddish::net

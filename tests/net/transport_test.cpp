@@ -1,0 +1,232 @@
+// The ZeroMQ transport on loopback, server and client in one process taking turns: a late joiner
+// gets every probe in its first frame, malformed messages are dropped and counted, a server of
+// another scene is refused, a restarted server is found again, the client's views reach the
+// server. Each test is bounded by its loop counts (tens of milliseconds per turn at most).
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "net/curve_keys.h"
+#include "net/probe_client.h"
+#include "net/probe_server.h"
+#include "net/published_probes.h"
+#include "net_test_util.h"
+
+namespace ddish::net {
+namespace {
+
+constexpr std::uint64_t kScene = 0xabc;
+
+// Distinct ports per test and per test process (ctest runs tests in parallel processes).
+std::string address(int test) {
+  const int port = 20000 + int(getpid() % 4000) * 8 + 2 * test;
+  return "tcp://127.0.0.1:" + std::to_string(port);
+}
+
+probes::ProbeGrid grid() { return probes::ProbeGrid(scene::Aabb{glm::vec3(0.0f), glm::vec3(2.0f)}, {4, 2, 3}); }
+
+struct Server {
+  probes::ProbeVolume volume{grid(), 2};
+  PublishedProbes published;
+  ProbeServer server;
+  std::uint64_t frame = 0;
+  std::mt19937_64 rng{9};
+
+  Server(const std::string& bind, std::uint64_t scene, std::uint64_t stream,
+         std::optional<CurveServerKeys> curve = std::nullopt)
+      : published(grid(), 2, scene, stream, {.encoding = Encoding::kHalf}),
+        server({.bind = bind, .client_timeout_ms = 500, .curve = std::move(curve)}) {}
+
+  // One tick: every probe traced anew, the delta published, requests answered for `ms`.
+  void tick(int ms = 5) {
+    for (std::uint32_t i = 0; i < volume.probe_count(); ++i) {
+      volume.set_sh(i, test::radiance_probe(rng, 2, 1.0f));
+      volume.state(i).flags = 0;
+      volume.state(i).updates += 1;
+    }
+    server.publish(published.publish(volume, ++frame, steady_now_us(), 0.0));
+    server.serve_requests(ms, [&] { return published.snapshot(); });
+  }
+};
+
+std::vector<std::string> log_lines;
+ClientOptions client_options(const std::string& connect) {
+  ClientOptions o;
+  o.connect = connect;
+  o.stale_ms = 300;
+  o.snapshot_retry_ms = 50;
+  o.log = [](const std::string& line) { log_lines.push_back(line); };
+  return o;
+}
+
+bool same_probes(const probes::ProbeVolume& a, const probes::ProbeVolume& b) {
+  for (std::uint32_t i = 0; i < a.probe_count(); ++i)
+    for (std::size_t j = 0; j < 9; ++j)
+      for (int c = 0; c < 3; ++c)  // fp16 on the wire
+        if (std::fabs(a.coefficients(i)[j][c] - b.coefficients(i)[j][c]) >
+            std::fabs(a.coefficients(i)[j][c]) * 0x1p-11f + 1e-6f)
+          return false;
+  return true;
+}
+
+TEST(Transport, LateJoinerHasEveryProbeInItsFirstFrame) {
+  Server s(address(0), kScene, 1);
+  for (int k = 0; k < 200; ++k) s.tick(0);
+  probes::ProbeVolume mine(grid(), 2);
+  ProbeClient client(client_options(address(0)), mine, kScene);
+  ClientPoll poll;
+  for (int turn = 0; turn < 200 && !client.synced(); ++turn) {
+    s.server.serve_requests(5, [&] { return s.published.snapshot(); });
+    poll = client.poll(5);
+  }
+  ASSERT_TRUE(client.synced());
+  EXPECT_GE(client.server_frame(), 200u);
+  EXPECT_EQ(poll.keyframes_applied, 1u);
+  EXPECT_EQ(poll.changed.size(), 24u);
+  EXPECT_TRUE(same_probes(s.volume, mine));
+  ASSERT_TRUE(client.probe_age_ms().has_value());
+  EXPECT_GE(*client.probe_age_ms(), -5.0);  // same machine: the offset is near 0
+  // It then follows the deltas.
+  for (int k = 0; k < 5; ++k) {
+    s.tick(2);
+    client.poll(50);
+  }
+  EXPECT_EQ(client.server_frame(), s.frame);
+  EXPECT_TRUE(same_probes(s.volume, mine));
+}
+
+TEST(Transport, MalformedMessagesAreDroppedAndCounted) {
+  Server s(address(1), kScene, 1);
+  probes::ProbeVolume mine(grid(), 2);
+  ProbeClient client(client_options(address(1)), mine, kScene);
+  for (int turn = 0; turn < 200 && !client.synced(); ++turn) {
+    s.tick(5);
+    client.poll(5);
+  }
+  ASSERT_TRUE(client.synced());
+  log_lines.clear();
+  std::vector<std::uint8_t> good = s.published.publish(s.volume, ++s.frame, 0, 0.0);
+  std::vector<std::uint8_t> bad_magic = good, truncated(good.begin(), good.begin() + 40);
+  bad_magic[0] = 'Z';
+  for (int k = 0; k < 3; ++k) {
+    s.server.publish(bad_magic);
+    s.server.publish(truncated);
+  }
+  s.server.publish(good);
+  for (int turn = 0; turn < 50 && client.server_frame() != s.frame; ++turn) client.poll(10);
+  EXPECT_EQ(client.server_frame(), s.frame);  // the good one still applies
+  EXPECT_EQ(client.rejected(RejectKind::kBadMagic), 3u);
+  EXPECT_EQ(client.rejected(RejectKind::kTruncated), 3u);
+  EXPECT_EQ(log_lines.size(), 2u);  // one line per kind
+}
+
+TEST(Transport, ServerOfAnotherSceneIsRefused) {
+  Server s(address(2), kScene + 1, 1);
+  probes::ProbeVolume mine(grid(), 2);
+  ProbeClient client(client_options(address(2)), mine, kScene);
+  for (int turn = 0; turn < 40; ++turn) {
+    s.tick(5);
+    client.poll(5);
+  }
+  EXPECT_FALSE(client.ever_synced());
+  EXPECT_GT(client.rejected(RejectKind::kSceneMismatch), 0u);
+  EXPECT_EQ(mine.coefficients(0)[0], glm::vec3(0.0f));  // nothing of it applied
+}
+
+TEST(Transport, RestartedServerIsFoundAgain) {
+  probes::ProbeVolume mine(grid(), 2);
+  ProbeClient client(client_options(address(3)), mine, kScene);
+  for (int restart = 0; restart < 3; ++restart) {
+    auto s = std::make_unique<Server>(address(3), kScene, 100 + std::uint64_t(restart));
+    for (int turn = 0; turn < 300 && !(client.synced() && client.server_frame() >= 3); ++turn) {
+      s->tick(5);
+      client.poll(5);
+    }
+    ASSERT_TRUE(client.synced()) << "restart " << restart;
+    EXPECT_TRUE(same_probes(s->volume, mine));
+    s.reset();  // killed: the client keeps its probes and notices within stale_ms
+    for (int turn = 0; turn < 100 && client.stale_ms() < 400.0; ++turn) client.poll(10);
+    EXPECT_FALSE(client.synced());
+    EXPECT_NE(mine.coefficients(0)[0], glm::vec3(0.0f));
+  }
+  // Each new server is found again; a delta lost while the SUB socket reconnects (it may connect
+  // after the snapshot was answered) costs one more snapshot, which the Clone pattern allows.
+  EXPECT_GE(client.reconnects(), 2u);
+  EXPECT_GE(client.snapshots(), 3u);
+  EXPECT_GE(client.snapshots(), client.reconnects() + 1);
+}
+
+TEST(Transport, ClientViewsReachTheServer) {
+  Server s(address(4), kScene, 1);
+  probes::ProbeVolume mine(grid(), 2);
+  ProbeClient client(client_options(address(4)), mine, kScene);
+  std::vector<scene::View> views(2);
+  views[0] = scene::look_at_view({0, 1, 3}, {0, 1, 0}, {0, 1, 0}, 1.0f, 64, 48);
+  views[1] = scene::look_at_view({1, 1, 3}, {0, 1, 0}, {0, 1, 0}, 1.0f, 64, 48);
+  for (int turn = 0; turn < 100 && s.server.views().size() < 2; ++turn) {
+    client.send_views(views);
+    client.poll(5);
+    s.tick(5);
+  }
+  ASSERT_EQ(s.server.views().size(), 2u);
+  EXPECT_EQ(s.server.clients(), 1u);
+  EXPECT_EQ(s.server.views()[1].view, views[1].view);
+  EXPECT_EQ(s.server.views()[0].width, 64);
+}
+
+// CURVE: a client whose key the server admits is served; one with an unknown key, or one that
+// does not speak CURVE, gets nothing and the server counts the refusal.
+TEST(Transport, CurveAdmitsOnlyListedKeys) {
+  const CurveKeyPair server_keys = generate_curve_keys(), known = generate_curve_keys(),
+                     unknown = generate_curve_keys();
+  EXPECT_EQ(server_keys.public_z85.size(), 40u);
+  Server s(address(5), kScene, 1, CurveServerKeys{server_keys.secret_z85, {known.public_z85}});
+  probes::ProbeVolume a(grid(), 2), b(grid(), 2), c(grid(), 2);
+  ClientOptions oa = client_options(address(5)), ob = oa, oc = oa;
+  oa.curve = CurveClientKeys{server_keys.public_z85, known.public_z85, known.secret_z85};
+  ob.curve = CurveClientKeys{server_keys.public_z85, unknown.public_z85, unknown.secret_z85};
+  ProbeClient served(oa, a, kScene), refused(ob, b, kScene), plain(oc, c, kScene);
+  for (int turn = 0; turn < 100 && !(served.synced() && s.server.refused_keys() > 0); ++turn) {
+    s.tick(5);
+    served.poll(2);
+    refused.poll(2);
+    plain.poll(2);
+  }
+  for (int turn = 0; turn < 10; ++turn) {
+    s.tick(5);
+    refused.poll(2);
+    plain.poll(2);
+  }
+  for (int turn = 0; turn < 50 && served.server_frame() != s.frame; ++turn) served.poll(10);
+  EXPECT_TRUE(served.synced());
+  EXPECT_EQ(served.server_frame(), s.frame);
+  EXPECT_TRUE(same_probes(s.volume, a));
+  EXPECT_FALSE(refused.ever_synced());
+  EXPECT_FALSE(plain.ever_synced());
+  EXPECT_GT(s.server.refused_keys(), 0u);
+}
+
+TEST(Transport, KeyFilesRoundTrip) {
+  const auto dir = std::filesystem::temp_directory_path() / ("ddish_keys_" + std::to_string(getpid()));
+  const CurveKeyPair k = generate_curve_keys();
+  write_curve_keys(dir, "client", k);
+  EXPECT_EQ(read_secret_key(dir / "client.key").public_z85, k.public_z85);
+  EXPECT_EQ(read_public_key(dir / "client.pub"), k.public_z85);
+  EXPECT_EQ(read_allowed_keys(dir), std::set<std::string>{k.public_z85});
+  { std::ofstream(dir / "bad.pub") << "not a key\n"; }
+  EXPECT_THROW(read_allowed_keys(dir), std::runtime_error);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace ddish::net
