@@ -185,6 +185,8 @@ class Gltf:
             "channels": [{"sampler": 0, "target": {"node": node, "path": "translation"}}]})
 
     def write(self, out_dir, sidecar):
+        """sidecar: the NAME.ddish.json object, or None for a plain glTF file with no sidecar
+        (what a user's model looks like: ddish's defaults and glTF's units apply)."""
         if self.extensions:
             self.doc["extensionsUsed"] = sorted(self.extensions)
         self.doc["buffers"] = [{"uri": self.name + ".bin", "byteLength": len(self.bin)}]
@@ -193,7 +195,12 @@ class Gltf:
         with open(os.path.join(out_dir, self.name + ".gltf"), "w") as f:
             json.dump(self.doc, f, indent=1)
             f.write("\n")
-        with open(os.path.join(out_dir, self.name + ".ddish.json"), "w") as f:
+        sidecar_path = os.path.join(out_dir, self.name + ".ddish.json")
+        if sidecar is None:
+            if os.path.exists(sidecar_path):
+                os.remove(sidecar_path)
+            return
+        with open(sidecar_path, "w") as f:
             json.dump(sidecar, f, indent=2)
             f.write("\n")
 
@@ -252,7 +259,7 @@ def cornell_box(out_dir):
     block(g, "ShortBlock", white, (0.6, 0.6, 0.6), [0.33, 0.0, 0.28], -17.0)
     block(g, "TallBlock", white, (0.6, 1.2, 0.6), [-0.33, 0.0, -0.3], 17.0)
     g.camera("Camera", *CORNELL_CAMERA)
-    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
                       "camera": "Camera"})
 
 
@@ -269,7 +276,7 @@ def cornell_spot(out_dir):
     g.node({"name": "Spot", "translation": [0.0, 1.9, 0.0], "rotation": [-s, 0.0, 0.0, s],
             "extensions": {"KHR_lights_punctual": {"light": spot}}})  # -Z turned to -Y
     g.camera("Camera", *CORNELL_CAMERA)
-    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
                       "camera": "Camera"})
 
 
@@ -282,7 +289,7 @@ def cornell_animated(out_dir):
     g.animate_translation("SlideShortBlock", short, [0.0, 2.0, 4.0],
                           [[0.33, 0.0, 0.28], [-0.35, 0.0, 0.45], [0.33, 0.0, 0.28]])
     g.camera("Camera", *CORNELL_CAMERA)
-    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
                       "camera": "Camera"})
 
 
@@ -317,7 +324,7 @@ def cornell_light(out_dir):
     g.camera("Camera", *CORNELL_CAMERA)
     # The probe grid covers the room only (the housing outside it would stretch an automatic grid):
     # the same 8 x 8 x 8 probes as cornell_box.
-    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]},
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]},
                       "probe_grid": {"counts": [8, 8, 8], "bounds": {"min": [-1, 0, -1], "max": [1, 2, 1]}},
                       "camera": "Camera"})
 
@@ -362,15 +369,80 @@ def two_rooms(out_dir):
     g.node({"name": "Lamp", "translation": [-1.8, 2.1, 0.6],
             "extensions": {"KHR_lights_punctual": {"light": lamp}}})
     g.camera("Camera", [3.0, 1.5, 1.3], [0.0, 1.0, 0.0], math.radians(60.0))
-    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [12, 4, 6]},
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [12, 4, 6]},
                       "camera": "Camera"})
+
+
+def uv_sphere(material, radius, segments=32, rings=16):
+    """A sphere around the origin, front faces outwards: `segments` around +Y, `rings` pole to
+    pole, smooth normals."""
+    part = Part(material)
+    for r in range(rings + 1):
+        theta = math.pi * r / rings
+        for k in range(segments + 1):
+            phi = 2.0 * math.pi * k / segments
+            n = [math.sin(theta) * math.sin(phi), math.cos(theta), math.sin(theta) * math.cos(phi)]
+            part.positions.append([radius * c for c in n])
+            part.normals.append(n)
+            part.uvs.append([k / segments, r / rings])
+    row = segments + 1
+    for r in range(rings):
+        for k in range(segments):
+            a, b = r * row + k, (r + 1) * row + k
+            if r > 0:
+                part.indices += [a, b, a + 1]
+            if r < rings - 1:
+                part.indices += [a + 1, b, b + 1]
+    return part
+
+
+def open_sphere(out_dir):
+    """A grey sphere (radius 0.5 m, albedo 0.5) centred 2 m up, alone in open space: no camera, no
+    light, no sidecar, like most glTF sample models. ddish frames it (scene/framing.h), lights it
+    with the default sky and surrounds it with probes (ProbeGrid::fit_auto_around)."""
+    g = Gltf("open_sphere")
+    grey = g.material("Grey", [0.5, 0.5, 0.5, 1.0])
+    g.node({"name": "Sphere", "mesh": g.mesh("Sphere", [uv_sphere(grey, 0.5)]),
+            "translation": [0.3, 2.0, -0.4]})
+    g.write(out_dir, None)
+
+
+# photometric_lamp: a point light of PHOTOMETRIC_CANDELA cd, PHOTOMETRIC_HEIGHT m above a white
+# floor, in glTF's own units (no sidecar). At the foot of the lamp the floor receives
+# E = I / 683 / h^2 W/m^2 and reflects L = albedo * E / pi (tests/app/lighting_cli_test.cpp).
+PHOTOMETRIC_CANDELA = 683.0
+PHOTOMETRIC_HEIGHT = 2.0
+PHOTOMETRIC_ALBEDO = 0.8
+
+
+def photometric_lamp(out_dir):
+    """A 20 x 20 m white floor (albedo 0.8) and a white point light of 683 cd (1 W/sr) 2 m above
+    its centre; the camera 1 m above the floor looks straight down at the lamp's foot (10 degree
+    field). Nothing else: the floor cannot light itself, so its radiance is the lamp's alone."""
+    g = Gltf("photometric_lamp")
+    floor = Part(g.material("Floor", [PHOTOMETRIC_ALBEDO, PHOTOMETRIC_ALBEDO, PHOTOMETRIC_ALBEDO, 1.0]))
+    floor.rect(1, 0.0, 1, (-10, -10), (10, 10))
+    g.node({"name": "Floor", "mesh": g.mesh("Floor", [floor])})
+    lamp = g.light({"name": "Lamp", "type": "point", "color": [1.0, 1.0, 1.0],
+                    "intensity": PHOTOMETRIC_CANDELA})
+    g.node({"name": "Lamp", "translation": [0.0, PHOTOMETRIC_HEIGHT, 0.0],
+            "extensions": {"KHR_lights_punctual": {"light": lamp}}})
+    # Looking down -Y: -Z of the camera node turned to -Y (a -90 degree turn about X).
+    s = math.sqrt(0.5)
+    g.doc.setdefault("cameras", []).append(
+        {"name": "Camera", "type": "perspective",
+         "perspective": {"yfov": math.radians(10.0), "znear": 0.01, "zfar": 100.0}})
+    g.node({"name": "Camera", "camera": len(g.doc["cameras"]) - 1, "translation": [0.0, 1.0, 0.0],
+            "rotation": [-s, 0.0, 0.0, s]})
+    g.write(out_dir, None)
 
 
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
-    for make in (cornell_box, cornell_spot, two_rooms, cornell_animated, cornell_light):
+    for make in (cornell_box, cornell_spot, two_rooms, cornell_animated, cornell_light, open_sphere,
+                 photometric_lamp):
         make(out_dir)
 
 

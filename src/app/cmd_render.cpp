@@ -5,6 +5,7 @@
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
 //                    [--probe-samples N] [--hysteresis A] [--bounces N] [--msaa 1|4]
 //                    [--sample-shading] [--anisotropy N] [--tonemap linear|filmic] [--no-indirect]
+//                    [--sky R,G,B] [--exposure EV]
 //                    [--schedule uniform|visibility] [--budget-ms MS] [--max-age N]
 //                    [--blend per-update|per-sample] [--device N] [--seed N]
 //
@@ -35,6 +36,7 @@
 #include "app/commands.h"
 #include "app/frame_loop.h"
 #include "app/frame_outputs.h"
+#include "app/lighting_options.h"
 #include "app/plan_report.h"
 #include "app/probe_options.h"
 #include "app/render_timings.h"
@@ -66,6 +68,7 @@ struct RenderArgs {
   bool per_view = false;
   std::string calibration;
   ProbeArgs probe;
+  LightingArgs lighting;
   ScheduleArgs schedule;
   int frames = 1;
   bool every = false;
@@ -84,6 +87,7 @@ struct RenderArgs {
 void check(const RenderArgs& a) {
   check_probe_options(a.probe);
   check_schedule_options(a.schedule);
+  sky_radiance(a.lighting);
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
   if (a.frames < 1) throw std::invalid_argument("--frames must be at least 1");
@@ -158,6 +162,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   ro.sample_shading = a.sample_shading;
   ro.anisotropy = a.anisotropy;
   ro.tone_curve = raster::parse_tone_curve(a.tonemap);
+  ro.exposure = exposure_scale(a.lighting);
   ro.probes = !a.no_indirect;
   raster::Renderer renderer(gpu.device(), s, volume, ro);
   const auto& grid = placement.grid;
@@ -213,6 +218,8 @@ int run_render(const RenderArgs& a) {
   if (!a.calibration.empty()) calibration = display::load_calibration(a.calibration);
   scene::Scene s = scene::load_scene(a.scene);
   s.pose(a.time);
+  const std::string framing = frame_camera_less(s, a.view, view_aspect(choice, a.view));
+  const std::string environment = apply_lighting(s, a.lighting);
   const Placement placement = place_probes(a.probe, s);
   const display::ViewSet first = make_frame_views(s, choice, a.display, a.view);
   const FrameWriter writer(first, {.dir = a.out,
@@ -223,6 +230,9 @@ int run_render(const RenderArgs& a) {
   fs::create_directories(a.out, ec);
   if (ec || !fs::is_directory(a.out)) throw std::runtime_error("cannot create output directory " + a.out);
 
+  // Said once the views and outputs are known to be good: bad input gets its one error line only.
+  if (!framing.empty()) std::fprintf(stderr, "render: %s\n", framing.c_str());
+  std::fprintf(stderr, "render: %s\n", environment.c_str());
   const GpuRun run = render_frames(a, s, placement, choice, first, writer);
   if (!a.timings.empty()) write_render_timings(a.timings, run.result.timings, run.result.counts, first);
   for (const fs::path& p : run.result.written) std::printf("wrote %s\n", p.string().c_str());
@@ -254,6 +264,7 @@ Action make_render(CLI::App& root) {
                   "Looking Glass calibration (visual.json): also write the lenticular panel image")
       ->check(CLI::ExistingFile);
   add_probe_options(*cmd, a->probe);
+  add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
   cmd->add_option("--frames", a->frames, "frames to render")->capture_default_str();
   cmd->add_flag("--every", a->every, "write every frame, not only the last");

@@ -267,6 +267,9 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
       throw LoadError(sidecar_path(path), "camera '" + scene.sidecar.camera + "' is not in " +
                                               std::filesystem::path(path).filename().string());
   }
+  // glTF's candela (point, spot) and lux (directional) become W/sr and W/m^2.
+  if (scene.sidecar.light_units == LightUnits::Photometric)
+    for (Light& light : scene.lights) light.intensity /= kLumensPerWatt;
   scene.pose(0.0);
   return scene;
 }
