@@ -437,12 +437,39 @@ def photometric_lamp(out_dir):
     g.write(out_dir, None)
 
 
+# instanced_boxes: one 0.4 m cube drawn three times by EXT_mesh_gpu_instancing under a node at
+# INSTANCING_NODE: (translation, rotation xyzw, scale) per instance.
+INSTANCING_NODE = [0.0, 1.0, 0.0]
+INSTANCES = [([-1.0, 0.2, 0.0], [0.0, 0.0, 0.0, 1.0], [1.0, 1.0, 1.0]),
+             ([0.0, 0.2, 0.0], y_rotation(45.0), [1.0, 1.0, 1.0]),
+             ([1.0, 0.4, 0.0], [0.0, 0.0, 0.0, 1.0], [2.0, 2.0, 2.0])]
+
+
+def instanced_boxes(out_dir):
+    """Three grey cubes from one mesh, placed by EXT_mesh_gpu_instancing: the second turned 45
+    degrees about +Y, the third twice the size. World bounds x in [-1.2, 1.4], y in [1, 1.8],
+    z in [-0.4, 0.4] (the third cube's half size 0.4). No camera, no light, no sidecar."""
+    g = Gltf("instanced_boxes")
+    cube = Part(g.material("Grey", [0.5, 0.5, 0.5, 1.0]))
+    cube.box([-0.2, -0.2, -0.2], [0.2, 0.2, 0.2], outward=True)
+    mesh = g.mesh("Cube", [cube])
+    attributes = {"TRANSLATION": g._accessor([t for t, _, _ in INSTANCES], "VEC3"),
+                  "ROTATION": g._accessor([r for _, r, _ in INSTANCES], "VEC4"),
+                  "SCALE": g._accessor([sc for _, _, sc in INSTANCES], "VEC3")}
+    for a in attributes.values():  # instance attributes are not vertex data
+        del g.doc["bufferViews"][g.doc["accessors"][a]["bufferView"]]["target"]
+    g.extensions.add("EXT_mesh_gpu_instancing")
+    g.node({"name": "Cubes", "mesh": mesh, "translation": INSTANCING_NODE,
+            "extensions": {"EXT_mesh_gpu_instancing": {"attributes": attributes}}})
+    g.write(out_dir, None)
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
     for make in (cornell_box, cornell_spot, two_rooms, cornell_animated, cornell_light, open_sphere,
-                 photometric_lamp):
+                 photometric_lamp, instanced_boxes):
         make(out_dir)
 
 

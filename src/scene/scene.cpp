@@ -52,7 +52,7 @@ std::vector<int> Scene::pose(double t) {
   std::vector<int> moved;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     Instance& inst = instances[i];
-    const glm::mat4& world = nodes[std::size_t(inst.node)].world;
+    const glm::mat4 world = nodes[std::size_t(inst.node)].world * inst.local;
     if (world != inst.transform) {
       inst.transform = world;
       moved.push_back(int(i));

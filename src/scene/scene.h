@@ -95,7 +95,8 @@ struct Node {
 struct Instance {
   int mesh = -1;
   int node = -1;
-  glm::mat4 transform{1.0f};  // object to world, updated by pose()
+  glm::mat4 transform{1.0f};  // object to world, updated by pose(): the node's world * local
+  glm::mat4 local{1.0f};      // under the node: an EXT_mesh_gpu_instancing instance's TRS
 };
 
 enum class LightType { Directional, Point, Spot };

@@ -13,6 +13,7 @@
 #include "cli_runner.h"
 #include "metrics/image.h"
 #include "metrics/image_io.h"
+#include "sky_coverage.h"
 
 namespace {
 
@@ -33,34 +34,8 @@ class FramingLightingCli : public cli::TempDirTest {
   }
 };
 
-float mean(const glm::vec3& c) { return (c.r + c.g + c.b) / 3.0f; }
-
-// The sphere's pixels: darker than halfway between it (about 0.5) and the sky (1).
-bool on_sphere(const glm::vec3& c) { return mean(c) < 0.75f; }
-
-struct Coverage {
-  double fraction = 0.0;  // of the image's pixels on the sphere
-  double sphere_mean = 0.0;
-  double background_mean = 0.0;
-};
-
-Coverage coverage(const ddish::metrics::Image& img) {
-  Coverage c;
-  std::size_t n = 0;
-  for (const glm::vec3& p : img.pixels()) {
-    if (on_sphere(p)) {
-      ++n;
-      c.sphere_mean += mean(p);
-    } else {
-      c.background_mean += mean(p);
-    }
-  }
-  const std::size_t all = img.pixels().size();
-  c.fraction = double(n) / double(all);
-  c.sphere_mean /= double(std::max<std::size_t>(n, 1));
-  c.background_mean /= double(std::max<std::size_t>(all - n, 1));
-  return c;
-}
+using sky_coverage::Coverage;
+using sky_coverage::coverage;
 
 // A centred sphere whose silhouette spans 0.9 of a square image covers pi / 4 * 0.9^2 of it;
 // the 32-segment mesh's polygonal silhouette is ~1 % smaller. Measured at 96 x 96: 0.630
@@ -95,8 +70,8 @@ TEST_F(FramingLightingCli, CameraLessLightlessSceneIsFramedLitAndSurroundedByPro
   // render is 15.3 dB off the reference instead of 34.0 dB: the sphere's mean then drops far
   // below the reference's. Measured: reference 0.513, render 0.494 (background 0.992 and 1: the
   // reference's pixel filter blends the sphere's edge into the pixels beside it).
-  EXPECT_NEAR(r.sphere_mean, 0.5, 0.06);
-  EXPECT_NEAR(v.sphere_mean, r.sphere_mean, 0.03);
+  EXPECT_NEAR(r.object_mean, 0.5, 0.06);
+  EXPECT_NEAR(v.object_mean, r.object_mean, 0.03);
 }
 
 TEST_F(FramingLightingCli, InfoReportsTheFramingCameraAndTheDefaultSky) {
