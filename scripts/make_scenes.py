@@ -464,12 +464,33 @@ def instanced_boxes(out_dir):
     g.write(out_dir, None)
 
 
+UNLIT_COLOR = [0.2, 0.6, 0.9]
+
+
+def unlit_panel(out_dir):
+    """A 1 x 1 m panel facing +Z at the origin with a KHR_materials_unlit material of base colour
+    UNLIT_COLOR, lit head-on by a directional light of 3415 lux (5 W/m^2) that must not change
+    it; the camera 2 m in front sees nothing but the panel (20 degree field). No sidecar."""
+    g = Gltf("unlit_panel")
+    m = g.material("Unlit", UNLIT_COLOR + [1.0])
+    g.doc["materials"][m]["extensions"] = {"KHR_materials_unlit": {}}
+    g.extensions.add("KHR_materials_unlit")
+    panel = Part(m)
+    panel.rect(2, 0.0, 1, (-0.5, -0.5), (0.5, 0.5))
+    g.node({"name": "Panel", "mesh": g.mesh("Panel", [panel])})
+    sun = g.light({"name": "Sun", "type": "directional", "intensity": 5.0 * 683.0})
+    g.node({"name": "Sun", "translation": [0.0, 0.0, 3.0],
+            "extensions": {"KHR_lights_punctual": {"light": sun}}})  # shines along -Z
+    g.camera("Camera", [0.0, 0.0, 2.0], [0.0, 0.0, 0.0], math.radians(20.0))
+    g.write(out_dir, None)
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
     for make in (cornell_box, cornell_spot, two_rooms, cornell_animated, cornell_light, open_sphere,
-                 photometric_lamp, instanced_boxes):
+                 photometric_lamp, instanced_boxes, unlit_panel):
         make(out_dir)
 
 

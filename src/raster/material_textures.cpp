@@ -169,7 +169,7 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
     }};
     MaterialData data;
     data.base_color = mat.base_color;
-    data.emission = glm::vec4(mat.emission(), 0.0f);
+    data.emission = glm::vec4(mat.emission(), mat.unlit ? 1.0f : 0.0f);  // w: KHR_materials_unlit
     data.params = {mat.metallic, mat.roughness, mat.normal_scale, mat.occlusion_strength};
     std::uint32_t bits = 0;
     std::array<VkDescriptorImageInfo, kSlots> images{};

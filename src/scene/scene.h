@@ -51,6 +51,9 @@ struct Material {
   AlphaMode alpha_mode = AlphaMode::Opaque;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
+  // KHR_materials_unlit: the surface shows its base colour (factor × texture) as radiance,
+  // whatever the light, and reflects nothing; both renderers treat it so.
+  bool unlit = false;
 
   TextureSlot base_color_texture;          // sRGB
   TextureSlot metallic_roughness_texture;  // linear: G = roughness, B = metallic
