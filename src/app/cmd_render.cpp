@@ -1,7 +1,7 @@
 // ddish render SCENE [--display single|stereo|PROFILE] [--views N] [--focal-distance M]
 //                    [--per-view] [--calibration FILE.json]
 //                    [--camera NODE|eye,target,up] [--fov DEG] [--width W --height H]
-//                    [--frames N] [--every] [--fps F] [--time T] [--out DIR] [--timings FILE]
+//                    [--frames N] [--every] [--loop] [--fps F] [--time T] [--out DIR] [--timings FILE]
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
 //                    [--probe-samples N] [--hysteresis A] [--bounces N] [--msaa 1|4]
 //                    [--sample-shading] [--anisotropy N] [--tonemap linear|filmic] [--no-indirect]
@@ -72,6 +72,7 @@ struct RenderArgs {
   ScheduleArgs schedule;
   int frames = 1;
   bool every = false;
+  bool loop = false;
   double fps = 30.0;
   double time = 0.0;
   std::string out = "out";
@@ -199,6 +200,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   options.time = a.time;
   options.fps = a.fps;
   options.every = a.every;
+  options.loop_period = a.loop ? s.animation_duration() : 0.0;
   // Without indirect light nothing reads the probes: tracing them would only cost time (and
   // would make a direct-light-only run's frame time meaningless as a baseline).
   options.update_probes = !a.no_indirect;
@@ -268,6 +270,9 @@ Action make_render(CLI::App& root) {
   add_schedule_options(*cmd, a->schedule);
   cmd->add_option("--frames", a->frames, "frames to render")->capture_default_str();
   cmd->add_flag("--every", a->every, "write every frame, not only the last");
+  cmd->add_flag("--loop", a->loop,
+                "play the animations again and again: the scene time wraps at the longest "
+                "animation's duration (without it the last pose holds)");
   cmd->add_option("--fps", a->fps, "frame k shows the scene at time + k / fps")->capture_default_str();
   cmd->add_option("--time", a->time, "scene time of frame 0 (seconds)")->capture_default_str();
   cmd->add_option("--out", a->out, "output directory")->capture_default_str();

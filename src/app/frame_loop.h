@@ -53,6 +53,9 @@ struct FrameLoopOptions {
   double fps = 30.0;
   bool every = false;             // write every frame, not only the last
   bool update_probes = true;      // false: render with the probes as they are
+  // > 0 (--loop): the scene time wraps at this period (the animation's duration), so an
+  // animation plays again and again instead of holding its last pose.
+  double loop_period = 0.0;
 };
 
 // What a frame did, counted (not timed): the figures that must not grow with the views.
