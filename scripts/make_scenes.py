@@ -14,6 +14,7 @@ import math
 import os
 import struct
 import sys
+import zlib
 
 WHITE = [0.725, 0.71, 0.68, 1.0]
 RED = [0.63, 0.065, 0.05, 1.0]
@@ -485,12 +486,50 @@ def unlit_panel(out_dir):
     g.write(out_dir, None)
 
 
+def png_rgba(width, height, pixels):
+    """A PNG file's bytes for rows of RGBA8 pixels (row 0 at the top), with the standard library."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    raw = b"".join(b"\x00" + bytes(v for px in row for v in px) for row in pixels)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+def clamped_texture(out_dir):
+    """A 3 x 1 m unlit panel facing +Z whose u runs from -1 to 2 over a 2 x 2 texture, red in its
+    left column and blue in its right, sampled with wrapS CLAMP_TO_EDGE: u < 0 shows the red edge
+    texel, u > 1 the blue one (REPEAT would show the texture three times). Unlit, so a pixel's
+    radiance is the texel's colour; the camera 2 m in front sees the panel edge to edge in a 3:1
+    image (28.07 degree field). No light, no sidecar."""
+    g = Gltf("clamped_texture")
+    red, blue = (255, 0, 0, 255), (0, 0, 255, 255)
+    png = png_rgba(2, 2, [[red, blue], [red, blue]])
+    while len(g.bin) % 4:
+        g.bin.append(0)
+    g.doc["bufferViews"].append({"buffer": 0, "byteOffset": len(g.bin), "byteLength": len(png)})
+    g.bin += png
+    g.doc["images"] = [{"name": "RedBlue", "mimeType": "image/png",
+                        "bufferView": len(g.doc["bufferViews"]) - 1}]
+    g.doc["samplers"] = [{"wrapS": 33071, "wrapT": 10497, "magFilter": 9729, "minFilter": 9987}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}]
+    m = g.material("ClampedUnlit", [1.0, 1.0, 1.0, 1.0])
+    g.doc["materials"][m]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
+    g.doc["materials"][m]["extensions"] = {"KHR_materials_unlit": {}}
+    g.extensions.add("KHR_materials_unlit")
+    panel = Part(m)
+    panel.rect(2, 0.0, 1, (-1.5, -0.5), (1.5, 0.5))
+    panel.uvs = [[-1.0 + (p[0] + 1.5), 0.5 - p[1]] for p in panel.positions]  # u = x + 0.5, v down
+    g.node({"name": "Panel", "mesh": g.mesh("Panel", [panel])})
+    g.camera("Camera", [0.0, 0.0, 2.0], [0.0, 0.0, 0.0], 2.0 * math.atan(0.25))
+    g.write(out_dir, None)
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
     for make in (cornell_box, cornell_spot, two_rooms, cornell_animated, cornell_light, open_sphere,
-                 photometric_lamp, instanced_boxes, unlit_panel):
+                 photometric_lamp, instanced_boxes, unlit_panel, clamped_texture):
         make(out_dir)
 
 
