@@ -14,6 +14,7 @@ import math
 import os
 import struct
 import sys
+import zlib
 
 WHITE = [0.725, 0.71, 0.68, 1.0]
 RED = [0.63, 0.065, 0.05, 1.0]
@@ -185,6 +186,8 @@ class Gltf:
             "channels": [{"sampler": 0, "target": {"node": node, "path": "translation"}}]})
 
     def write(self, out_dir, sidecar):
+        """sidecar: the NAME.ddish.json object, or None for a plain glTF file with no sidecar
+        (what a user's model looks like: ddish's defaults and glTF's units apply)."""
         if self.extensions:
             self.doc["extensionsUsed"] = sorted(self.extensions)
         self.doc["buffers"] = [{"uri": self.name + ".bin", "byteLength": len(self.bin)}]
@@ -193,7 +196,12 @@ class Gltf:
         with open(os.path.join(out_dir, self.name + ".gltf"), "w") as f:
             json.dump(self.doc, f, indent=1)
             f.write("\n")
-        with open(os.path.join(out_dir, self.name + ".ddish.json"), "w") as f:
+        sidecar_path = os.path.join(out_dir, self.name + ".ddish.json")
+        if sidecar is None:
+            if os.path.exists(sidecar_path):
+                os.remove(sidecar_path)
+            return
+        with open(sidecar_path, "w") as f:
             json.dump(sidecar, f, indent=2)
             f.write("\n")
 
@@ -252,7 +260,7 @@ def cornell_box(out_dir):
     block(g, "ShortBlock", white, (0.6, 0.6, 0.6), [0.33, 0.0, 0.28], -17.0)
     block(g, "TallBlock", white, (0.6, 1.2, 0.6), [-0.33, 0.0, -0.3], 17.0)
     g.camera("Camera", *CORNELL_CAMERA)
-    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
                       "camera": "Camera"})
 
 
@@ -269,7 +277,7 @@ def cornell_spot(out_dir):
     g.node({"name": "Spot", "translation": [0.0, 1.9, 0.0], "rotation": [-s, 0.0, 0.0, s],
             "extensions": {"KHR_lights_punctual": {"light": spot}}})  # -Z turned to -Y
     g.camera("Camera", *CORNELL_CAMERA)
-    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
                       "camera": "Camera"})
 
 
@@ -282,7 +290,7 @@ def cornell_animated(out_dir):
     g.animate_translation("SlideShortBlock", short, [0.0, 2.0, 4.0],
                           [[0.33, 0.0, 0.28], [-0.35, 0.0, 0.45], [0.33, 0.0, 0.28]])
     g.camera("Camera", *CORNELL_CAMERA)
-    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [8, 8, 8]},
                       "camera": "Camera"})
 
 
@@ -317,7 +325,7 @@ def cornell_light(out_dir):
     g.camera("Camera", *CORNELL_CAMERA)
     # The probe grid covers the room only (the housing outside it would stretch an automatic grid):
     # the same 8 x 8 x 8 probes as cornell_box.
-    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]},
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]},
                       "probe_grid": {"counts": [8, 8, 8], "bounds": {"min": [-1, 0, -1], "max": [1, 2, 1]}},
                       "camera": "Camera"})
 
@@ -362,15 +370,166 @@ def two_rooms(out_dir):
     g.node({"name": "Lamp", "translation": [-1.8, 2.1, 0.6],
             "extensions": {"KHR_lights_punctual": {"light": lamp}}})
     g.camera("Camera", [3.0, 1.5, 1.3], [0.0, 1.0, 0.0], math.radians(60.0))
-    g.write(out_dir, {"environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [12, 4, 6]},
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]}, "probe_grid": {"counts": [12, 4, 6]},
                       "camera": "Camera"})
+
+
+def uv_sphere(material, radius, segments=32, rings=16):
+    """A sphere around the origin, front faces outwards: `segments` around +Y, `rings` pole to
+    pole, smooth normals."""
+    part = Part(material)
+    for r in range(rings + 1):
+        theta = math.pi * r / rings
+        for k in range(segments + 1):
+            phi = 2.0 * math.pi * k / segments
+            n = [math.sin(theta) * math.sin(phi), math.cos(theta), math.sin(theta) * math.cos(phi)]
+            part.positions.append([radius * c for c in n])
+            part.normals.append(n)
+            part.uvs.append([k / segments, r / rings])
+    row = segments + 1
+    for r in range(rings):
+        for k in range(segments):
+            a, b = r * row + k, (r + 1) * row + k
+            if r > 0:
+                part.indices += [a, b, a + 1]
+            if r < rings - 1:
+                part.indices += [a + 1, b, b + 1]
+    return part
+
+
+def open_sphere(out_dir):
+    """A grey sphere (radius 0.5 m, albedo 0.5) centred 2 m up, alone in open space: no camera, no
+    light, no sidecar, like most glTF sample models. ddish frames it (scene/framing.h), lights it
+    with the default sky and surrounds it with probes (ProbeGrid::fit_auto_around)."""
+    g = Gltf("open_sphere")
+    grey = g.material("Grey", [0.5, 0.5, 0.5, 1.0])
+    g.node({"name": "Sphere", "mesh": g.mesh("Sphere", [uv_sphere(grey, 0.5)]),
+            "translation": [0.3, 2.0, -0.4]})
+    g.write(out_dir, None)
+
+
+# photometric_lamp: a point light of PHOTOMETRIC_CANDELA cd, PHOTOMETRIC_HEIGHT m above a white
+# floor, in glTF's own units (no sidecar). At the foot of the lamp the floor receives
+# E = I / 683 / h^2 W/m^2 and reflects L = albedo * E / pi (tests/app/lighting_cli_test.cpp).
+PHOTOMETRIC_CANDELA = 683.0
+PHOTOMETRIC_HEIGHT = 2.0
+PHOTOMETRIC_ALBEDO = 0.8
+
+
+def photometric_lamp(out_dir):
+    """A 20 x 20 m white floor (albedo 0.8) and a white point light of 683 cd (1 W/sr) 2 m above
+    its centre; the camera 1 m above the floor looks straight down at the lamp's foot (10 degree
+    field). Nothing else: the floor cannot light itself, so its radiance is the lamp's alone."""
+    g = Gltf("photometric_lamp")
+    floor = Part(g.material("Floor", [PHOTOMETRIC_ALBEDO, PHOTOMETRIC_ALBEDO, PHOTOMETRIC_ALBEDO, 1.0]))
+    floor.rect(1, 0.0, 1, (-10, -10), (10, 10))
+    g.node({"name": "Floor", "mesh": g.mesh("Floor", [floor])})
+    lamp = g.light({"name": "Lamp", "type": "point", "color": [1.0, 1.0, 1.0],
+                    "intensity": PHOTOMETRIC_CANDELA})
+    g.node({"name": "Lamp", "translation": [0.0, PHOTOMETRIC_HEIGHT, 0.0],
+            "extensions": {"KHR_lights_punctual": {"light": lamp}}})
+    # Looking down -Y: -Z of the camera node turned to -Y (a -90 degree turn about X).
+    s = math.sqrt(0.5)
+    g.doc.setdefault("cameras", []).append(
+        {"name": "Camera", "type": "perspective",
+         "perspective": {"yfov": math.radians(10.0), "znear": 0.01, "zfar": 100.0}})
+    g.node({"name": "Camera", "camera": len(g.doc["cameras"]) - 1, "translation": [0.0, 1.0, 0.0],
+            "rotation": [-s, 0.0, 0.0, s]})
+    g.write(out_dir, None)
+
+
+# instanced_boxes: one 0.4 m cube drawn three times by EXT_mesh_gpu_instancing under a node at
+# INSTANCING_NODE: (translation, rotation xyzw, scale) per instance.
+INSTANCING_NODE = [0.0, 1.0, 0.0]
+INSTANCES = [([-1.0, 0.2, 0.0], [0.0, 0.0, 0.0, 1.0], [1.0, 1.0, 1.0]),
+             ([0.0, 0.2, 0.0], y_rotation(45.0), [1.0, 1.0, 1.0]),
+             ([1.0, 0.4, 0.0], [0.0, 0.0, 0.0, 1.0], [2.0, 2.0, 2.0])]
+
+
+def instanced_boxes(out_dir):
+    """Three grey cubes from one mesh, placed by EXT_mesh_gpu_instancing: the second turned 45
+    degrees about +Y, the third twice the size. World bounds x in [-1.2, 1.4], y in [1, 1.8],
+    z in [-0.4, 0.4] (the third cube's half size 0.4). No camera, no light, no sidecar."""
+    g = Gltf("instanced_boxes")
+    cube = Part(g.material("Grey", [0.5, 0.5, 0.5, 1.0]))
+    cube.box([-0.2, -0.2, -0.2], [0.2, 0.2, 0.2], outward=True)
+    mesh = g.mesh("Cube", [cube])
+    attributes = {"TRANSLATION": g._accessor([t for t, _, _ in INSTANCES], "VEC3"),
+                  "ROTATION": g._accessor([r for _, r, _ in INSTANCES], "VEC4"),
+                  "SCALE": g._accessor([sc for _, _, sc in INSTANCES], "VEC3")}
+    for a in attributes.values():  # instance attributes are not vertex data
+        del g.doc["bufferViews"][g.doc["accessors"][a]["bufferView"]]["target"]
+    g.extensions.add("EXT_mesh_gpu_instancing")
+    g.node({"name": "Cubes", "mesh": mesh, "translation": INSTANCING_NODE,
+            "extensions": {"EXT_mesh_gpu_instancing": {"attributes": attributes}}})
+    g.write(out_dir, None)
+
+
+UNLIT_COLOR = [0.2, 0.6, 0.9]
+
+
+def unlit_panel(out_dir):
+    """A 1 x 1 m panel facing +Z at the origin with a KHR_materials_unlit material of base colour
+    UNLIT_COLOR, lit head-on by a directional light of 3415 lux (5 W/m^2) that must not change
+    it; the camera 2 m in front sees nothing but the panel (20 degree field). No sidecar."""
+    g = Gltf("unlit_panel")
+    m = g.material("Unlit", UNLIT_COLOR + [1.0])
+    g.doc["materials"][m]["extensions"] = {"KHR_materials_unlit": {}}
+    g.extensions.add("KHR_materials_unlit")
+    panel = Part(m)
+    panel.rect(2, 0.0, 1, (-0.5, -0.5), (0.5, 0.5))
+    g.node({"name": "Panel", "mesh": g.mesh("Panel", [panel])})
+    sun = g.light({"name": "Sun", "type": "directional", "intensity": 5.0 * 683.0})
+    g.node({"name": "Sun", "translation": [0.0, 0.0, 3.0],
+            "extensions": {"KHR_lights_punctual": {"light": sun}}})  # shines along -Z
+    g.camera("Camera", [0.0, 0.0, 2.0], [0.0, 0.0, 0.0], math.radians(20.0))
+    g.write(out_dir, None)
+
+
+def png_rgba(width, height, pixels):
+    """A PNG file's bytes for rows of RGBA8 pixels (row 0 at the top), with the standard library."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    raw = b"".join(b"\x00" + bytes(v for px in row for v in px) for row in pixels)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+def clamped_texture(out_dir):
+    """A 3 x 1 m unlit panel facing +Z whose u runs from -1 to 2 over a 2 x 2 texture, red in its
+    left column and blue in its right, sampled with wrapS CLAMP_TO_EDGE: u < 0 shows the red edge
+    texel, u > 1 the blue one (REPEAT would show the texture three times). Unlit, so a pixel's
+    radiance is the texel's colour; the camera 2 m in front sees the panel edge to edge in a 3:1
+    image (28.07 degree field). No light, no sidecar."""
+    g = Gltf("clamped_texture")
+    red, blue = (255, 0, 0, 255), (0, 0, 255, 255)
+    png = png_rgba(2, 2, [[red, blue], [red, blue]])
+    while len(g.bin) % 4:
+        g.bin.append(0)
+    g.doc["bufferViews"].append({"buffer": 0, "byteOffset": len(g.bin), "byteLength": len(png)})
+    g.bin += png
+    g.doc["images"] = [{"name": "RedBlue", "mimeType": "image/png",
+                        "bufferView": len(g.doc["bufferViews"]) - 1}]
+    g.doc["samplers"] = [{"wrapS": 33071, "wrapT": 10497, "magFilter": 9729, "minFilter": 9987}]
+    g.doc["textures"] = [{"source": 0, "sampler": 0}]
+    m = g.material("ClampedUnlit", [1.0, 1.0, 1.0, 1.0])
+    g.doc["materials"][m]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
+    g.doc["materials"][m]["extensions"] = {"KHR_materials_unlit": {}}
+    g.extensions.add("KHR_materials_unlit")
+    panel = Part(m)
+    panel.rect(2, 0.0, 1, (-1.5, -0.5), (1.5, 0.5))
+    panel.uvs = [[-1.0 + (p[0] + 1.5), 0.5 - p[1]] for p in panel.positions]  # u = x + 0.5, v down
+    g.node({"name": "Panel", "mesh": g.mesh("Panel", [panel])})
+    g.camera("Camera", [0.0, 0.0, 2.0], [0.0, 0.0, 0.0], 2.0 * math.atan(0.25))
+    g.write(out_dir, None)
 
 
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
-    for make in (cornell_box, cornell_spot, two_rooms, cornell_animated, cornell_light):
+    for make in (cornell_box, cornell_spot, two_rooms, cornell_animated, cornell_light, open_sphere,
+                 photometric_lamp, instanced_boxes, unlit_panel, clamped_texture):
         make(out_dir)
 
 

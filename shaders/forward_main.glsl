@@ -33,7 +33,7 @@ const float kSpecularAaKappa = 0.18;  // the largest alpha^2 the filter adds
 
 layout(set = MATERIAL_SET, binding = 0) uniform MaterialData {
   vec4 base_color;
-  vec4 emission;   // rgb: emissiveFactor × strength
+  vec4 emission;   // rgb: emissiveFactor × strength; w: 1 = KHR_materials_unlit
   vec4 params;     // x: metallic, y: roughness, z: normal scale, w: occlusion strength
   vec4 alpha;      // x: cutoff, y: 1 = MASK, z: bit set of bound textures
 } material;
@@ -153,6 +153,12 @@ void main() {
   metallic = clamp(metallic, 0.0, 1.0);
   roughness = clamp(roughness, 0.0, 1.0);
   const vec3 albedo = clamp(base.rgb, 0.0, 1.0);
+  // KHR_materials_unlit: the base colour, no light, as the path tracer shows it
+  // (trace/surface.cpp); single-sided back faces are culled before they get here.
+  if (material.emission.w > 0.5) {
+    out_color = vec4(albedo, 1.0);
+    return;
+  }
 
   // Shading normal: double-sided surfaces seen from behind turn to the viewer (single-sided
   // back faces are culled, as the tracer ends paths there).

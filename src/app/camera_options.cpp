@@ -5,8 +5,10 @@
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <glm/glm.hpp>
 
+#include "scene/framing.h"
 #include "scene/scene.h"
 
 namespace ddish::app {
@@ -88,6 +90,24 @@ scene::Camera resolve_camera(const scene::Scene& s, const CameraArgs& args) {
   scene::Camera c = *cam;
   if (args.fov) c.yfov = glm::radians(*args.fov);
   return c;
+}
+
+std::string frame_camera_less(scene::Scene& s, const CameraArgs& args, float aspect) {
+  if (!s.cameras.empty() || !args.camera.empty()) return "";
+  const scene::Sphere sphere = scene::bounding_sphere(s);
+  const float fov = glm::radians(args.fov.value_or(kDefaultFovDeg));
+  s.cameras.push_back(scene::framing_camera(sphere, fov, aspect));
+  return fmt::format(
+      "no camera in the scene: framing its bounding sphere (centre ({:.3g}, {:.3g}, {:.3g}), "
+      "radius {:.3g} m) from a three-quarter view: {}",
+      sphere.center.x, sphere.center.y, sphere.center.z, sphere.radius,
+      describe_camera(s.cameras.back()));
+}
+
+std::string describe_camera(const scene::Camera& c) {
+  const glm::vec3 t = c.eye + glm::normalize(c.forward);
+  return fmt::format("eye ({:.3g}, {:.3g}, {:.3g}) target ({:.3g}, {:.3g}, {:.3g}) fov {:.1f} deg",
+                     c.eye.x, c.eye.y, c.eye.z, t.x, t.y, t.z, glm::degrees(c.yfov));
 }
 
 scene::View make_view(const scene::Scene& s, const CameraArgs& args) {

@@ -44,6 +44,16 @@ const scene::Camera* find_camera(const scene::Scene& scene, const std::string& n
 // std::invalid_argument naming what is wrong.
 scene::Camera resolve_camera(const scene::Scene& scene, const CameraArgs& args);
 
+// When the scene has no camera and --camera is empty, adds scene/framing.h's framing camera
+// for views of width / height = aspect (and --fov, else kDefaultFovDeg) as the scene's default
+// camera, and returns the run-log line that says so; otherwise changes nothing and returns "".
+// Call it once, on the scene as posed at the first frame: the camera then stays put while an
+// animation moves the scene's bounds.
+std::string frame_camera_less(scene::Scene& scene, const CameraArgs& args, float aspect);
+
+// One line: "eye (x, y, z) target (x, y, z) fov F deg" (the target one unit ahead).
+std::string describe_camera(const scene::Camera& camera);
+
 // The view the options describe for the scene as posed now (a camera node follows its
 // animation). Throws std::invalid_argument naming what is wrong.
 scene::View make_view(const scene::Scene& scene, const CameraArgs& args);

@@ -7,9 +7,12 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/camera_options.h"
 #include "app/commands.h"
 #include "app/plan_report.h"
+#include "scene/environment_choice.h"
 #include "scene/features.h"
+#include "scene/framing.h"
 #include "scene/gltf_loader.h"
 
 namespace ddish::app {
@@ -36,8 +39,23 @@ const char* light_type(scene::LightType t) {
 
 nlohmann::json vec(const glm::vec3& v) { return {v.x, v.y, v.z}; }
 
+// The camera render and reference use without --camera: the scene's default camera, else the
+// framing camera (for the default square view and field of view; a portrait view is framed
+// by its narrower horizontal field).
+scene::Camera view_camera(const scene::Scene& s) {
+  if (const scene::Camera* c = s.default_camera()) return *c;
+  return scene::framing_camera(scene::bounding_sphere(s), glm::radians(kDefaultFovDeg), 1.0f);
+}
+
+const char* light_units(const scene::Scene& s) {
+  return s.sidecar.light_units == scene::LightUnits::Radiometric
+             ? "radiometric (sidecar): W/sr, W/m^2"
+             : "photometric (glTF): candela, lux; / 683 lm/W";
+}
+
 nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
-                       const scene::RenderPlan& plan, double seconds) {
+                       const scene::RenderPlan& plan, const scene::EnvironmentChoice& env,
+                       double seconds) {
   using nlohmann::json;
   json j;
   j["path"] = s.path;
@@ -64,6 +82,13 @@ nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
                             {"up", vec(c.up)}});
   const scene::Camera* cam = s.default_camera();
   j["default_camera"] = cam ? json(cam->name) : json(nullptr);
+  const scene::Camera vc = view_camera(s);
+  j["view_camera"] = {{"name", vc.name},
+                      {"framed", cam == nullptr},
+                      {"yfov", vc.yfov},
+                      {"eye", vec(vc.eye)},
+                      {"forward", vec(vc.forward)},
+                      {"up", vec(vc.up)}};
   j["animations"] = json::array();
   for (const auto& a : s.animations)
     j["animations"].push_back(
@@ -71,6 +96,9 @@ nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
   j["bounds"] = f.bounds.empty() ? json(nullptr)
                                  : json{{"min", vec(f.bounds.min)}, {"max", vec(f.bounds.max)}};
   j["environment"] = vec(f.environment);
+  j["environment_source"] = scene::environment_source_name(env.source);
+  j["light_units"] = s.sidecar.light_units == scene::LightUnits::Radiometric ? "radiometric"
+                                                                              : "photometric";
   json grid = json::object();
   if (s.sidecar.probe_counts) {
     const glm::ivec3& c = *s.sidecar.probe_counts;
@@ -100,7 +128,7 @@ nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
 }
 
 void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scene::RenderPlan& plan,
-                double seconds) {
+                const scene::EnvironmentChoice& env, double seconds) {
   fmt::print("{}  (loaded in {:.2f} s)\n", s.path, seconds);
   fmt::print("  triangles   {} (after instancing)\n", f.triangles);
   fmt::print("  instances   {} of {} meshes\n", f.instances, f.meshes);
@@ -108,8 +136,9 @@ void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scen
   fmt::print("  textures    {} ({} used)\n", s.textures.size(), f.textures_used);
   fmt::print("  lights      {} directional, {} point, {} spot\n", f.directional_lights,
              f.point_lights, f.spot_lights);
+  if (!s.lights.empty()) fmt::print("    units in the file {}\n", light_units(s));
   for (const auto& l : s.lights)
-    fmt::print("    {:<12} {:<11} intensity {:g}, colour ({:g}, {:g}, {:g})\n", l.name,
+    fmt::print("    {:<12} {:<11} intensity {:g} (radiometric), colour ({:g}, {:g}, {:g})\n", l.name,
                light_type(l.type), l.intensity, l.color.r, l.color.g, l.color.b);
   const scene::Camera* def = s.default_camera();
   fmt::print("  cameras     {}{}\n", s.cameras.size(),
@@ -119,6 +148,9 @@ void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scen
         "    {:<12} eye ({:.2f}, {:.2f}, {:.2f}) forward ({:.2f}, {:.2f}, {:.2f}) fov {:.1f} deg\n",
         c.name, c.eye.x, c.eye.y, c.eye.z, c.forward.x, c.forward.y, c.forward.z,
         glm::degrees(c.yfov));
+  const scene::Camera vc = view_camera(s);
+  fmt::print("  view camera {}: {}{}\n", vc.name, describe_camera(vc),
+             def ? "" : " (no camera in the file: the bounding sphere framed for a square view)");
   fmt::print("  animations  {}", f.animations);
   if (f.animations) fmt::print(" ({:.2f} s)", f.animation_duration);
   fmt::print("\n");
@@ -128,8 +160,8 @@ void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scen
     fmt::print("  bounds      ({:.3f}, {:.3f}, {:.3f}) .. ({:.3f}, {:.3f}, {:.3f})\n",
                f.bounds.min.x, f.bounds.min.y, f.bounds.min.z, f.bounds.max.x, f.bounds.max.y,
                f.bounds.max.z);
-  fmt::print("  environment ({:g}, {:g}, {:g}) radiance\n", f.environment.r, f.environment.g,
-             f.environment.b);
+  fmt::print("  environment ({:g}, {:g}, {:g}) radiance: {}\n", f.environment.r, f.environment.g,
+             f.environment.b, scene::environment_source_name(env.source));
   if (s.sidecar.probe_counts) {
     const glm::ivec3& c = *s.sidecar.probe_counts;
     fmt::print("  probe grid  {} x {} x {} = {} probes{}\n", c.x, c.y, c.z, c.x * c.y * c.z,
@@ -162,12 +194,14 @@ Action make_info(CLI::App& root) {
     scene::Scene s = scene::load_scene(opts->scene, load);
     double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    // What render, reference and probes light the scene with when no --sky is given.
+    const scene::EnvironmentChoice env = scene::apply_environment(s, std::nullopt);
     scene::SceneFeatures f = scene::analyze(s);
     scene::RenderPlan plan = scene::make_plan(f);
     if (opts->json)
-      fmt::print("{}\n", to_json(s, f, plan, seconds).dump(2));
+      fmt::print("{}\n", to_json(s, f, plan, env, seconds).dump(2));
     else
-      print_text(s, f, plan, seconds);
+      print_text(s, f, plan, env, seconds);
     return 0;
   };
 }

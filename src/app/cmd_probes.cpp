@@ -1,5 +1,6 @@
 // ddish probes SCENE [--grid X,Y,Z | --probe-spacing M] [--probe-samples N] [--bounces N]
 //                    [--updates K] [--hysteresis A] [--sh-order 1..4] [--seed N] [--out PATH]
+//                    [--sky R,G,B]
 //
 // Places a probe volume in the scene, runs K probe updates with the path tracer (a line per
 // update), and reports rays traced, Mrays/s, time, active and inactive probes and the packed
@@ -16,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "app/commands.h"
+#include "app/lighting_options.h"
 #include "app/probe_options.h"
 #include "io/atomic_file.h"
 #include "probes/probe_grid.h"
@@ -34,12 +36,14 @@ namespace {
 struct ProbesArgs {
   std::string scene;
   ProbeArgs probe;  // placement, update and SH options shared with `ddish render`
+  LightingArgs lighting;  // --sky
   int updates = 1;
   std::string out;
 };
 
 void check(const ProbesArgs& a) {
   check_probe_options(a.probe);
+  sky_radiance(a.lighting);
   if (a.updates < 1) throw std::invalid_argument("--updates must be at least 1");
 }
 
@@ -53,6 +57,7 @@ int run_probes(const ProbesArgs& a) {
   auto t0 = std::chrono::steady_clock::now();
   scene::Scene s = scene::load_scene(a.scene);
   const double load_s = seconds_since(t0);
+  const std::string environment = apply_lighting(s, a.lighting);
   Placement placement = place_probes(a.probe, s);
   const probes::ProbeGrid& grid = placement.grid;
 
@@ -63,6 +68,7 @@ int run_probes(const ProbesArgs& a) {
   const double build_s = seconds_since(t0);
   fmt::print("{}: {} triangles, loaded in {:.2f} s, tracer built in {:.2f} s\n", s.path,
              s.triangle_count(), load_s, build_s);
+  fmt::print("{}\n", environment);
   fmt::print("probes   {} x {} x {} = {} ({}), spacing {:.3g} x {:.3g} x {:.3g} m, L{} SH\n",
              grid.counts().x, grid.counts().y, grid.counts().z, grid.probe_count(),
              placement.how, grid.spacing().x, grid.spacing().y, grid.spacing().z, a.probe.sh_order);
@@ -113,6 +119,7 @@ Action make_probes(CLI::App& root) {
       root.add_subcommand("probes", "update a probe volume and write it (debugging, baking)");
   cmd->add_option("scene", a->scene, "glTF 2.0 scene (.gltf or .glb)")->required();
   add_probe_options(*cmd, a->probe);
+  add_lighting_options(*cmd, a->lighting, /*exposure=*/false);
   cmd->add_option("--updates", a->updates, "probe updates to run")->capture_default_str();
   cmd->add_option("--out", a->out, "write the volume here (and a JSON summary at PATH.json)");
   return [a]() { return run_probes(*a); };

@@ -37,6 +37,7 @@
 #include "app/camera_options.h"
 #include "app/commands.h"
 #include "app/frame_outputs.h"
+#include "app/lighting_options.h"
 #include "app/view_options.h"
 #include "io/atomic_file.h"
 #include "metrics/errors.h"
@@ -57,6 +58,7 @@ struct ReferenceArgs {
   std::string scene;
   CameraArgs view;  // --camera, --fov, --width, --height (shared with `ddish render`)
   DisplayArgs display;  // --display, --views, --focal-distance (shared with `ddish render`)
+  LightingArgs lighting;  // --sky, --exposure (shared with `ddish render`)
   int spp = 256;
   double time_limit = 0.0;
   std::uint64_t seed = 1;
@@ -139,6 +141,7 @@ nlohmann::ordered_json view_meta(const scene::View& view, const trace::Reference
 
 int run_reference(const ReferenceArgs& args) {
   parse_pose(args.view.camera);  // a malformed --camera fails before the (possibly slow) load
+  sky_radiance(args.lighting);
   const DisplayChoice choice = resolve_display(args.display, args.view);
   if (!choice.single() && !args.convergence.empty())
     throw std::invalid_argument("--convergence measures one view; it cannot be used with --display " +
@@ -147,8 +150,13 @@ int run_reference(const ReferenceArgs& args) {
   const fs::path out_dir(args.out);
   io::check_writable_folder(out_dir);
   if (!args.convergence.empty()) io::check_writable_file(args.convergence);
-  const scene::Scene s = scene::load_scene(args.scene);
+  scene::Scene s = scene::load_scene(args.scene);
+  const std::string framing = frame_camera_less(s, args.view, view_aspect(choice, args.view));
+  const std::string environment = apply_lighting(s, args.lighting);
   const display::ViewSet set = make_frame_views(s, choice, args.display, args.view);
+  // Said once the views and outputs are known to be good: bad input gets its one error line only.
+  if (!framing.empty()) std::fprintf(stderr, "reference: %s\n", framing.c_str());
+  std::fprintf(stderr, "reference: %s\n", environment.c_str());
 
   trace::PathOptions path_options;
   path_options.max_bounces = args.bounces;
@@ -186,12 +194,14 @@ int run_reference(const ReferenceArgs& args) {
     totals.nonfinite_samples += r.nonfinite_samples;
     totals.invalid_paths += r.invalid_paths;
   }
-  // The reference has no tone curve: its PNG is the linear image clamped and sRGB-encoded.
+  // The reference has no tone curve: its PNG is the linear image (times --exposure's 2^EV)
+  // clamped and sRGB-encoded.
+  const float exposure = exposure_scale(args.lighting);
   const FrameWriter writer(set, {.dir = out_dir,
                                  .stem = fs::path(args.scene).stem().string(),
                                  .per_view = !choice.single(),
                                  .calibration = std::nullopt});
-  const std::vector<fs::path> written = writer.write(LinearFrameViews(images), "reference", "");
+  const std::vector<fs::path> written = writer.write(LinearFrameViews(images, exposure), "reference", "");
   if (!args.convergence.empty()) {
     // A time-limited run ends below --spp: drop the points at or above what it reached.
     std::erase_if(points, [&](const ConvergencePoint& p) { return p.spp >= totals.spp; });
@@ -242,6 +252,7 @@ Action add_reference(CLI::App& root) {
       ->check(CLI::ExistingFile);
   add_camera_options(*cmd, args->view);
   add_display_options(*cmd, args->display);
+  add_lighting_options(*cmd, args->lighting, /*exposure=*/true);
   cmd->add_option("--spp", args->spp, "samples per pixel")
       ->capture_default_str()
       ->check(CLI::Range(1, 1 << 24));

@@ -1,10 +1,11 @@
 // ddish render SCENE [--display single|stereo|PROFILE] [--views N] [--focal-distance M]
 //                    [--per-view] [--calibration FILE.json]
 //                    [--camera NODE|eye,target,up] [--fov DEG] [--width W --height H]
-//                    [--frames N] [--every] [--fps F] [--time T] [--out DIR] [--timings FILE]
+//                    [--frames N] [--every] [--loop] [--fps F] [--time T] [--out DIR] [--timings FILE]
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
 //                    [--probe-samples N] [--hysteresis A] [--bounces N] [--msaa 1|4]
-//                    [--sample-shading] [--view-batch N] [--anisotropy N] [--tonemap linear|filmic] [--no-indirect]
+//                    [--sample-shading] [--view-batch N] [--anisotropy N] [--tonemap linear|filmic]
+//                    [--no-indirect] [--sky R,G,B] [--exposure EV]
 //                    [--schedule uniform|visibility] [--budget-ms MS] [--max-age N]
 //                    [--blend per-update|per-sample] [--device N] [--seed N]
 //
@@ -53,6 +54,7 @@
 #include "app/frame_loop.h"
 #include "app/frame_outputs.h"
 #include "app/interrupt.h"
+#include "app/lighting_options.h"
 #include "app/output_queue.h"
 #include "app/plan_report.h"
 #include "app/probe_options.h"
@@ -91,9 +93,11 @@ struct RenderArgs {
   bool per_view = false;
   std::string calibration;
   ProbeArgs probe;
+  LightingArgs lighting;
   ScheduleArgs schedule;
   int frames = 1;
   bool every = false;
+  bool loop = false;
   double fps = 30.0;
   double time = 0.0;
   std::string out = "out";
@@ -119,6 +123,7 @@ struct RenderArgs {
 void check(const RenderArgs& a) {
   check_probe_options(a.probe);
   check_schedule_options(a.schedule);
+  sky_radiance(a.lighting);
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
   if (a.frames < 1) throw std::invalid_argument("--frames must be at least 1");
@@ -253,6 +258,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   ro.anisotropy = a.anisotropy;
   ro.batch_views = a.view_batch;
   ro.tone_curve = raster::parse_tone_curve(a.tonemap);
+  ro.exposure = exposure_scale(a.lighting);
   ro.probes = !a.no_indirect;
   raster::Renderer renderer(gpu.device(), s, volume, ro);
   const auto& grid = placement.grid;
@@ -310,6 +316,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   options.fps = a.fps;
   options.every = a.every;
   options.stop = &stop_flag();  // Ctrl-C: this frame is the last one, written whole
+  options.loop_period = a.loop ? s.animation_duration() : 0.0;
   // Without indirect light nothing reads the probes: tracing them would only cost time (and
   // would make a direct-light-only run's frame time meaningless as a baseline).
   options.update_probes = !a.no_indirect;
@@ -350,6 +357,8 @@ int run_render(const RenderArgs& a) {
   scene::Scene s = scene::load_scene(a.scene);
   const std::uint64_t geometry = geometry_identity(s);  // before posing moves animated nodes
   s.pose(a.time);
+  const std::string framing = frame_camera_less(s, a.view, view_aspect(choice, a.view));
+  const std::string environment = apply_lighting(s, a.lighting);
   const Placement placement = place_probes(a.probe, s);
   const display::ViewSet first = make_frame_views(s, choice, a.display, a.view);
   const FrameWriter writer(first, {.dir = a.out,
@@ -357,6 +366,9 @@ int run_render(const RenderArgs& a) {
                                    .per_view = a.per_view,
                                    .calibration = calibration});
 
+  // Said once the views and outputs are known to be good: bad input gets its one error line only.
+  if (!framing.empty()) std::fprintf(stderr, "%s: %s\n", a.tag(), framing.c_str());
+  std::fprintf(stderr, "%s: %s\n", a.tag(), environment.c_str());
   allow_graceful_stop();
   const GpuRun run = render_frames(a, s, placement, choice, first, writer,
                                    scene_identity(geometry, placement.grid, a.probe.sh_order));
@@ -397,6 +409,9 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--frames", a.frames, "frames to render")->capture_default_str();
   cmd->add_flag("--every", a.every, "write every frame, not only the last");
+  cmd->add_flag("--loop", a.loop,
+                "play the animations again and again: the scene time wraps at the longest "
+                "animation's duration (without it the last pose holds)");
   cmd->add_option("--fps", a.fps, "frame k shows the scene at time + k / fps")->capture_default_str();
   cmd->add_option("--time", a.time, "scene time of frame 0 (seconds)")->capture_default_str();
   cmd->add_option("--out", a.out, "output directory")->capture_default_str();
@@ -426,6 +441,7 @@ Action make_render(CLI::App& root) {
       "render", "the main job: probes updated and views rasterized per frame, written to --out");
   add_frame_options(cmd, *a);
   add_probe_options(*cmd, a->probe);
+  add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
   return [a]() { return run_render(*a); };
 }

@@ -1,6 +1,7 @@
 #include "app/frame_loop.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "probes/probe_volume.h"
 #include "raster/renderer.h"
@@ -49,7 +50,8 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
   for (int k = 0; k < o.frames; ++k) {
     metrics::FrameTimings timings;
     timings.frame = k;
-    const double t = o.time + double(k) / o.fps;
+    const double clock = o.time + double(k) / o.fps;
+    const double t = o.loop_period > 0.0 ? std::fmod(clock, o.loop_period) : clock;
     FrameReport report;
     report.frame = k;
     report.t = t;

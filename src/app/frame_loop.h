@@ -63,6 +63,9 @@ struct FrameLoopOptions {
   // Checked once per frame, before its output: when raised, the frame is written as the last
   // one and the loop ends (Ctrl-C, app/interrupt.h). Null: never stops early.
   const std::atomic<bool>* stop = nullptr;
+  // > 0 (--loop): the scene time wraps at this period (the animation's duration), so an
+  // animation plays again and again instead of holding its last pose.
+  double loop_period = 0.0;
 };
 
 struct FrameReport {

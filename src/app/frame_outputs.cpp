@@ -63,7 +63,8 @@ void RasterFrameViews::display_row(std::size_t view, int y, std::uint8_t* rgb) c
   }
 }
 
-LinearFrameViews::LinearFrameViews(std::span<const metrics::Image> images) : images_(images) {
+LinearFrameViews::LinearFrameViews(std::span<const metrics::Image> images, float display_scale)
+    : images_(images), display_scale_(display_scale) {
   check_sizes(images, "image");
 }
 
@@ -78,7 +79,8 @@ void LinearFrameViews::display_row(std::size_t view, int y, std::uint8_t* rgb) c
   const std::size_t w = std::size_t(img.width());
   const glm::vec3* p = &img.pixels()[std::size_t(y) * w];
   for (std::size_t x = 0; x < w; ++x)
-    for (int c = 0; c < 3; ++c) rgb[3 * x + std::size_t(c)] = metrics::srgb8_encode(p[x][c]);
+    for (int c = 0; c < 3; ++c)
+      rgb[3 * x + std::size_t(c)] = metrics::srgb8_encode(p[x][c] * display_scale_);
 }
 
 FrameWriter::FrameWriter(const display::ViewSet& set, OutputOptions options)

@@ -66,11 +66,11 @@ class RasterFrameViews final : public FrameViews {
 };
 
 // Linear images with no tone curve (the reference): their display values are the clamped sRGB
-// encoding of the linear values.
+// encoding of the linear values times `display_scale` (--exposure's 2^EV).
 class LinearFrameViews final : public FrameViews {
  public:
   // Throws std::invalid_argument for no images or images of different sizes.
-  explicit LinearFrameViews(std::span<const metrics::Image> images);
+  explicit LinearFrameViews(std::span<const metrics::Image> images, float display_scale = 1.0f);
   std::size_t count() const override { return images_.size(); }
   int width() const override { return images_.front().width(); }
   int height() const override { return images_.front().height(); }
@@ -79,6 +79,7 @@ class LinearFrameViews final : public FrameViews {
 
  private:
   std::span<const metrics::Image> images_;
+  float display_scale_ = 1.0f;
 };
 
 class FrameWriter {

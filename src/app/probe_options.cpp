@@ -68,9 +68,17 @@ Placement place_probes(const ProbeArgs& a, const scene::Scene& s) {
             fmt::format("--probe-spacing {:g} m over {}", *a.spacing, over)};
   if (s.sidecar.probe_counts && a.grid != "auto")
     return {probes::ProbeGrid(bounds, *s.sidecar.probe_counts), "sidecar counts over " + over};
-  return {probes::ProbeGrid::fit_auto(bounds),
-          fmt::format("automatic ({} along the longest axis) over {}",
-                      probes::ProbeGrid::kAutoLongestAxisProbes, over)};
+  // Sidecar bounds are where the probes are wanted (a room); the scene's own bounds may be an
+  // object in open space, which needs probes around it (ProbeGrid::fit_auto_around).
+  if (sidecar_bounds)
+    return {probes::ProbeGrid::fit_auto(bounds),
+            fmt::format("automatic ({} along the longest axis) over {}",
+                        probes::ProbeGrid::kAutoLongestAxisProbes, over)};
+  return {probes::ProbeGrid::fit_auto_around(bounds),
+          fmt::format("automatic ({} along the longest axis) over the scene bounds and a "
+                      "{}-cell margin",
+                      probes::ProbeGrid::kAutoLongestAxisProbes,
+                      probes::ProbeGrid::kAutoMarginCells)};
 }
 
 probes::UpdateOptions update_options(const ProbeArgs& a) {

@@ -58,7 +58,8 @@ struct Placement {
 };
 
 // --grid counts or --probe-spacing over the sidecar's probe_bounds (else the scene's bounds);
-// without either, the sidecar's probe counts; without those (or with --grid auto), automatic.
+// without either, the sidecar's probe counts; without those (or with --grid auto), automatic:
+// over the sidecar's bounds as they are, over the scene's with a margin (fit_auto_around).
 Placement place_probes(const ProbeArgs& args, const scene::Scene& scene);
 
 probes::UpdateOptions update_options(const ProbeArgs& args);

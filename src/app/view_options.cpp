@@ -120,6 +120,12 @@ DisplayChoice resolve_display(const DisplayArgs& d, const CameraArgs& camera) {
   return choice;
 }
 
+float view_aspect(const DisplayChoice& choice, const CameraArgs& camera) {
+  if (choice.single()) return float(camera.width) / float(camera.height);
+  const display::QuiltLayout& l = choice.profile->layout;
+  return float(l.tile_width) / float(l.tile_height);
+}
+
 display::ViewSet make_frame_views(const scene::Scene& scene, const DisplayChoice& choice,
                                   const DisplayArgs& display, const CameraArgs& camera) {
   if (choice.single()) {

@@ -54,6 +54,9 @@ struct DisplayChoice {
 // profiles there are), a layout that cannot fit.
 DisplayChoice resolve_display(const DisplayArgs& display, const CameraArgs& camera);
 
+// Width / height of one view: the profile's tile, else --width / --height.
+float view_aspect(const DisplayChoice& choice, const CameraArgs& camera);
+
 // The layout for `views` tiles of tile_width × tile_height: the fewest empty cells first, then
 // the atlas closest to square, then more columns. 48 tiles of 420 × 560 give 8 × 6 (3360 ×
 // 3360), 8 give 4 × 2, 2 give 2 × 1. Throws std::invalid_argument when the atlas would exceed

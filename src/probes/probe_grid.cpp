@@ -67,6 +67,18 @@ ProbeGrid ProbeGrid::fit_auto(const scene::Aabb& bounds) {
   return fit_spacing(bounds, longest / float(kAutoLongestAxisProbes) * (1.0f + 1e-6f));
 }
 
+ProbeGrid ProbeGrid::fit_auto_around(const scene::Aabb& bounds) {
+  check_bounds(bounds);
+  glm::vec3 e = bounds.extent();
+  float longest = std::max(e.x, std::max(e.y, e.z));
+  if (longest <= 0.0f) return ProbeGrid(bounds, glm::ivec3(1));
+  // N cells along the grown longest axis, k of them margin on each side: m = k (L + 2m) / N.
+  const float n = float(kAutoLongestAxisProbes), k = float(kAutoMarginCells);
+  const float margin = k * longest / (n - 2.0f * k);
+  scene::Aabb grown{bounds.min - glm::vec3(margin), bounds.max + glm::vec3(margin)};
+  return fit_spacing(grown, margin / k * (1.0f + 1e-6f));
+}
+
 glm::vec3 ProbeGrid::grid_coordinate(const glm::vec3& world) const {
   glm::vec3 g(0.0f);
   for (int a = 0; a < 3; ++a)

@@ -37,6 +37,17 @@ class ProbeGrid {
   static constexpr int kAutoLongestAxisProbes = 16;
   static ProbeGrid fit_auto(const scene::Aabb& bounds);
 
+  // The automatic grid around what the bounds hold, for bounds that are the scene's own (an
+  // object in open space, not a room's walls): fit_auto over the bounds grown on every side by
+  // kAutoMarginCells cells of the resulting grid, i.e. by longest extent / 14. The outermost
+  // probes then lie half a cell outside the bounds, so an object that fills its bounds (a box, a
+  // sphere) has a layer of probes in the open around it; since inactive probes (inside
+  // geometry) are weighted out of the interpolation, every point of its surface reads probes
+  // that see it from outside. Without the margin every probe of a box lies inside it, and the
+  // box renders black. A point gets one probe on it, as with fit_auto.
+  static constexpr int kAutoMarginCells = 1;
+  static ProbeGrid fit_auto_around(const scene::Aabb& bounds);
+
   const scene::Aabb& bounds() const { return bounds_; }
   const glm::ivec3& counts() const { return counts_; }
   // Distance between neighbouring probes per axis (the cell size); 0 on an axis of zero extent.

@@ -63,7 +63,7 @@ enum TextureBit : std::uint32_t {
 
 struct MaterialData {
   glm::vec4 base_color{1.0f};
-  glm::vec4 emission{0.0f};
+  glm::vec4 emission{0.0f};  // rgb: emissiveFactor × strength; w: 1 = KHR_materials_unlit
   glm::vec4 params{0.0f};  // metallic, roughness, normal scale, occlusion strength
   glm::vec4 alpha{0.0f};   // cutoff, 1 = MASK, texture bits
 };

@@ -110,20 +110,34 @@ const gpu::Image& MaterialTextures::image_for(const gpu::Device& device, gpu::Co
   return it->second;
 }
 
-MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner& runner,
-                                   const scene::Scene& scene, bool textures, int anisotropy)
-    : device_(device.handle()),
-      max_anisotropy_(resolve_anisotropy(anisotropy, device.info().type,
-                                         device.features().sampler_anisotropy,
-                                         device.limits().maxSamplerAnisotropy)) {
-  scene::Texture white_texel{"white", 1, 1, {255, 255, 255, 255}};
-  white_ = upload_texture(device, runner, white_texel, VK_FORMAT_R8G8B8A8_UNORM);
+namespace {
 
+VkSamplerAddressMode address_mode(scene::Wrap wrap) {
+  switch (wrap) {
+    case scene::Wrap::ClampToEdge:
+      return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    case scene::Wrap::MirroredRepeat:
+      return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    case scene::Wrap::Repeat:
+      break;
+  }
+  return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+}
+
+}  // namespace
+
+VkSampler MaterialTextures::sampler_for(const scene::TextureSlot& slot) {
+  const auto key = std::make_pair(slot.wrap_s, slot.wrap_t);
+  auto it = samplers_.find(key);
+  if (it != samplers_.end()) return it->second.get();
   VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sampler.magFilter = VK_FILTER_LINEAR;
   sampler.minFilter = VK_FILTER_LINEAR;
   sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-  sampler.addressModeU = sampler.addressModeV = sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  // glTF's wrapS / wrapT, as the path tracer reads them (trace/texture_lookup.h).
+  sampler.addressModeU = address_mode(slot.wrap_s);
+  sampler.addressModeV = address_mode(slot.wrap_t);
+  sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
   sampler.maxLod = VK_LOD_CLAMP_NONE;
   // Off by default on CPU devices, where lavapipe's anisotropic filter can stall a view for
   // tens of seconds (raster/anisotropy.h).
@@ -133,7 +147,18 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
   }
   VkSampler s = VK_NULL_HANDLE;
   gpu::check(vkCreateSampler(device_, &sampler, nullptr, &s), "vkCreateSampler");
-  sampler_ = {device_, s};
+  return samplers_.emplace(key, gpu::DeviceHandle<VkSampler, vkDestroySampler>{device_, s})
+      .first->second.get();
+}
+
+MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner& runner,
+                                   const scene::Scene& scene, bool textures, int anisotropy)
+    : device_(device.handle()),
+      max_anisotropy_(resolve_anisotropy(anisotropy, device.info().type,
+                                         device.features().sampler_anisotropy,
+                                         device.limits().maxSamplerAnisotropy)) {
+  scene::Texture white_texel{"white", 1, 1, {255, 255, 255, 255}};
+  white_ = upload_texture(device, runner, white_texel, VK_FORMAT_R8G8B8A8_UNORM);
 
   std::array<VkDescriptorSetLayoutBinding, kSlots + 1> bindings{};
   bindings[0] = {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
@@ -169,7 +194,7 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
     }};
     MaterialData data;
     data.base_color = mat.base_color;
-    data.emission = glm::vec4(mat.emission(), 0.0f);
+    data.emission = glm::vec4(mat.emission(), mat.unlit ? 1.0f : 0.0f);  // w: KHR_materials_unlit
     data.params = {mat.metallic, mat.roughness, mat.normal_scale, mat.occlusion_strength};
     std::uint32_t bits = 0;
     std::array<VkDescriptorImageInfo, kSlots> images{};
@@ -178,7 +203,7 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
       const bool bound = textures && slot && static_cast<std::size_t>(slot.texture) < scene.textures.size();
       const gpu::Image& image = bound ? image_for(device, runner, scene, slot.texture, slots[i].second) : white_;
       if (bound) bits |= 1u << i;
-      images[i] = {sampler_.get(), image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+      images[i] = {sampler_for(slot), image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     }
     data.alpha = {mat.alpha_cutoff, mat.alpha_mode == scene::AlphaMode::Mask ? 1.0f : 0.0f,
                   static_cast<float>(bits), 0.0f};

@@ -15,16 +15,12 @@
 #include "gpu/buffer.h"
 #include "gpu/handle.h"
 #include "gpu/image.h"
+#include "scene/scene.h"
 
 namespace ddish::gpu {
 class CommandRunner;
 class Device;
 }  // namespace ddish::gpu
-
-namespace ddish::scene {
-struct Scene;
-struct Texture;
-}  // namespace ddish::scene
 
 namespace ddish::raster {
 
@@ -57,7 +53,12 @@ class MaterialTextures {
   float max_anisotropy_ = 1.0f;
   gpu::Image white_;
   std::map<std::pair<int, bool>, gpu::Image> images_;  // (texture, sRGB) -> image
-  gpu::DeviceHandle<VkSampler, vkDestroySampler> sampler_;
+  // The sampler for a slot's glTF wrapS / wrapT, made on first use (at most 9).
+  VkSampler sampler_for(const scene::TextureSlot& slot);
+
+  // (wrapS, wrapT) -> sampler; the filters are linear with linear mips for every texture.
+  std::map<std::pair<scene::Wrap, scene::Wrap>, gpu::DeviceHandle<VkSampler, vkDestroySampler>>
+      samplers_;
   gpu::Buffer uniforms_;
   gpu::DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout> layout_;
   gpu::DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool> pool_;

@@ -46,6 +46,10 @@ bool make_camera(const Context& ctx, int camera, int node, Scene& scene, Camera&
 
 void load_animations(const Context& ctx, Scene& scene);
 
+// EXT_mesh_gpu_instancing on node `node`: each instance's TRS as a matrix under the node (T * R *
+// S, as glTF composes a node's), or nothing when the node has no such extension.
+std::vector<glm::mat4> instance_transforms(const Context& ctx, int node);
+
 // A number member of an extension object (`extensions[ext][key]`), or `fallback`.
 double extension_number(const tinygltf::ExtensionMap& extensions, const std::string& ext,
                         const std::string& key, double fallback);

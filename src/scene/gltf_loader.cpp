@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene/gltf_internal.h"
+#include "scene/required_extensions.h"
 #include "scene/sidecar.h"
 #include "scene/texture_decode.h"
 
@@ -22,7 +23,16 @@ namespace {
 
 // The extensions ddish implements; a file that requires any other cannot be shown correctly.
 bool supported_extension(const std::string& name) {
-  return name == "KHR_lights_punctual" || name == "KHR_materials_emissive_strength";
+  return name == "KHR_lights_punctual" || name == "KHR_materials_emissive_strength" ||
+         name == "EXT_mesh_gpu_instancing" || name == "KHR_materials_unlit";
+}
+
+LoadError unsupported_extension(const std::string& path, const std::string& ext) {
+  if (ext == "KHR_draco_mesh_compression")
+    return LoadError(path, "requires unsupported extension KHR_draco_mesh_compression (ddish "
+                           "does not decode Draco-compressed meshes; give it the uncompressed "
+                           "file)");
+  return LoadError(path, "requires unsupported extension " + ext);
 }
 
 struct ImageCapture {
@@ -189,7 +199,12 @@ void place(const gltf::Context& ctx, Scene& scene) {
     int n = stack.back();
     stack.pop_back();
     Node& node = scene.nodes[std::size_t(n)];
-    for (int mesh : node.meshes) scene.instances.push_back(Instance{mesh, n, glm::mat4(1.0f)});
+    const std::vector<glm::mat4> gpu_instances = gltf::instance_transforms(ctx, n);
+    if (gpu_instances.empty())
+      for (int mesh : node.meshes) scene.instances.push_back(Instance{mesh, n, glm::mat4(1.0f)});
+    for (const glm::mat4& local : gpu_instances)
+      for (int mesh : node.meshes)
+        scene.instances.push_back(Instance{mesh, n, glm::mat4(1.0f), local});
     const auto& gn = m.nodes[std::size_t(n)];
     if (gn.camera >= 0) {
       Camera cam;
@@ -228,11 +243,17 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   } catch (const std::exception& e) {
     throw LoadError(path, std::string("not a valid glTF file (") + e.what() + ")");
   }
-  if (!ok) throw LoadError(path, err.empty() ? "not a valid glTF file" : err);
+  if (!ok) {
+    // A required extension tinygltf cannot read either (Draco's accessors have no buffer view)
+    // is the reason to give, not the accessor error it stumbled on.
+    for (const std::string& ext : required_extensions(path))
+      if (!supported_extension(ext)) throw unsupported_extension(path, ext);
+    throw LoadError(path, err.empty() ? "not a valid glTF file" : err);
+  }
   if (model.asset.version.rfind("2.", 0) != 0)
     throw LoadError(path, "glTF version '" + model.asset.version + "' is not 2.x");
   for (const auto& ext : model.extensionsRequired)
-    if (!supported_extension(ext)) throw LoadError(path, "requires unsupported extension " + ext);
+    if (!supported_extension(ext)) throw unsupported_extension(path, ext);
 
   gltf::Context ctx{model, path};
   Scene scene;
@@ -267,6 +288,9 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
       throw LoadError(sidecar_path(path), "camera '" + scene.sidecar.camera + "' is not in " +
                                               std::filesystem::path(path).filename().string());
   }
+  // glTF's candela (point, spot) and lux (directional) become W/sr and W/m^2.
+  if (scene.sidecar.light_units == LightUnits::Photometric)
+    for (Light& light : scene.lights) light.intensity /= kLumensPerWatt;
   scene.pose(0.0);
   return scene;
 }

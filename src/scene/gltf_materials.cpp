@@ -112,6 +112,7 @@ void load_materials(const Context& ctx, Scene& scene) {
       ctx.fail(what + ": unknown alphaMode '" + gm.alphaMode + "'");
     mat.alpha_cutoff = std::max(0.0f, finite_or(gm.alphaCutoff, 0.5f));
     mat.double_sided = gm.doubleSided;
+    mat.unlit = gm.extensions.count("KHR_materials_unlit") > 0;
     mat.base_color_texture = slot(ctx, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
                                   what + " baseColorTexture");
     mat.metallic_roughness_texture =

@@ -52,7 +52,7 @@ std::vector<int> Scene::pose(double t) {
   std::vector<int> moved;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     Instance& inst = instances[i];
-    const glm::mat4& world = nodes[std::size_t(inst.node)].world;
+    const glm::mat4 world = nodes[std::size_t(inst.node)].world * inst.local;
     if (world != inst.transform) {
       inst.transform = world;
       moved.push_back(int(i));
@@ -65,6 +65,7 @@ std::vector<int> Scene::pose(double t) {
     if (glm::length(d) > 0.0f) light.direction = glm::normalize(d);
   }
   for (Camera& cam : cameras) {
+    if (cam.node < 0) continue;  // placed by ddish (the framing camera), not by the hierarchy
     const glm::mat4& w = nodes[std::size_t(cam.node)].world;
     cam.eye = glm::vec3(w[3]);
     glm::vec3 f = glm::mat3(w) * glm::vec3(0.0f, 0.0f, -1.0f);

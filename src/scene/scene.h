@@ -51,6 +51,9 @@ struct Material {
   AlphaMode alpha_mode = AlphaMode::Opaque;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;
+  // KHR_materials_unlit: the surface shows its base colour (factor × texture) as radiance,
+  // whatever the light, and reflects nothing; both renderers treat it so.
+  bool unlit = false;
 
   TextureSlot base_color_texture;          // sRGB
   TextureSlot metallic_roughness_texture;  // linear: G = roughness, B = metallic
@@ -95,14 +98,16 @@ struct Node {
 struct Instance {
   int mesh = -1;
   int node = -1;
-  glm::mat4 transform{1.0f};  // object to world, updated by pose()
+  glm::mat4 transform{1.0f};  // object to world, updated by pose(): the node's world * local
+  glm::mat4 local{1.0f};      // under the node: an EXT_mesh_gpu_instancing instance's TRS
 };
 
 enum class LightType { Directional, Point, Spot };
 
 // KHR_lights_punctual in radiometric units (DESIGN.md "Light units"): a directional light's
 // intensity is the irradiance on a surface facing it, a point or spot light's intensity is
-// radiant intensity (power per steradian).
+// radiant intensity (power per steradian). The loader converts the file's photometric units
+// (Sidecar::light_units) with kLumensPerWatt.
 struct Light {
   std::string name;
   LightType type = LightType::Point;
@@ -126,15 +131,26 @@ struct Camera {
   std::optional<float> aspect;
   float znear = 0.01f;
   float zfar = 1000.0f;
-  int node = -1;
+  int node = -1;  // -1: not in the hierarchy (the framing camera), pose() leaves it where it is
   glm::vec3 eye{0.0f};
   glm::vec3 forward{0.0f, 0.0f, -1.0f};
   glm::vec3 up{0.0f, 1.0f, 0.0f};
 };
 
+// The units of KHR_lights_punctual intensities in the file. glTF specifies photometric units
+// (candela for point and spot lights, lux for directional ones); a sidecar may declare
+// radiometric ones (W/sr, W/m^2), as ddish's own and the benchmark scenes do.
+enum class LightUnits { Photometric, Radiometric };
+
+// Luminous efficacy that converts glTF's photometric light units to radiometric ones: 683 lm/W
+// (the SI definition of the candela, at 540 THz), as KHR_lights_punctual suggests.
+inline constexpr float kLumensPerWatt = 683.0f;
+
 // What the sidecar NAME.ddish.json adds to a glTF file (format: ../shared/scenes/README.md).
 struct Sidecar {
   glm::vec3 environment{0.0f};               // uniform radiance of escaping rays
+  bool environment_given = false;            // environment.radiance is in the sidecar
+  LightUnits light_units = LightUnits::Photometric;
   std::optional<glm::ivec3> probe_counts;    // probe grid counts
   std::optional<Aabb> probe_bounds;          // probe grid bounds; default: the scene's bounds
   std::string camera;                        // default camera node name; empty = first camera

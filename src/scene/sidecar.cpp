@@ -52,6 +52,7 @@ Sidecar parse_sidecar(const std::string& text, const std::string& file) {
     const json& env = object_member(j, "environment", file);
     if (env.contains("radiance")) {
       sc.environment = vec3_of(env["radiance"], "environment.radiance", file);
+      sc.environment_given = true;
       if (glm::any(glm::lessThan(sc.environment, glm::vec3(0.0f))))
         throw LoadError(file, "environment.radiance must not be negative");
     }
@@ -82,6 +83,15 @@ Sidecar parse_sidecar(const std::string& text, const std::string& file) {
         throw LoadError(file, "probe_grid.bounds.min must be below max on every axis");
       sc.probe_bounds = box;
     }
+  }
+  if (j.contains("light_units")) {
+    const json& u = j["light_units"];
+    if (u == "radiometric")
+      sc.light_units = LightUnits::Radiometric;
+    else if (u == "photometric")
+      sc.light_units = LightUnits::Photometric;
+    else
+      throw LoadError(file, "\"light_units\" must be \"photometric\" or \"radiometric\"");
   }
   if (j.contains("camera")) {
     if (!j["camera"].is_string()) throw LoadError(file, "\"camera\" must be a string");

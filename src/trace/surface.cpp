@@ -160,6 +160,11 @@ SurfacePoint make_surface_point(const HitInput& hit, const TextureSet& textures)
     }
     sp.emission = e;
   }
+  // KHR_materials_unlit: the base colour is what the surface shows, its emission included.
+  if (mat.unlit) {
+    sp.unlit = true;
+    sp.emission = sp.backface ? glm::vec3(0.0f) : sp.bsdf.base_color;
+  }
   return sp;
 }
 

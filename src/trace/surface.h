@@ -61,6 +61,7 @@ struct SurfacePoint {
   bool backface = false;  // the ray hit the back of a single-sided surface
   BsdfParams bsdf;
   glm::vec3 emission{0.0f};   // radiance emitted toward the ray (textured)
+  bool unlit = false;         // KHR_materials_unlit: emission is the base colour, nothing scatters
   float offset_scale = 0.0f;  // coordinate magnitude for offset_ray_origin
 };
 

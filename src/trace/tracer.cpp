@@ -138,6 +138,7 @@ PathSample Tracer::trace_path(const Ray& primary, Sampler& sampler) const {
       }
       add(beta * sp.emission * w, depth);
     }
+    if (sp.unlit) break;  // KHR_materials_unlit reflects nothing
     if (depth >= opt.max_bounces) break;
 
     const Bsdf bsdf(sp.bsdf);

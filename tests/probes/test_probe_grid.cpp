@@ -80,3 +80,34 @@ TEST(ProbeGrid, AutomaticPlacement) {
   ProbeGrid point = ProbeGrid::fit_auto(Aabb{{1.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f}});
   EXPECT_EQ(point.counts(), glm::ivec3(1));
 }
+
+// The automatic grid around an object's own bounds (ProbeGrid::fit_auto_around): a unit cube
+// grows by 1/14 m on every side, so the 16 probes along each axis sit at (i - 0.5) / 14: the
+// first and the last half a cell (1/28 m) outside the cube, the 14 between them inside. Without
+// the margin (fit_auto) all 16^3 probes lie inside the cube.
+TEST(ProbeGrid, AutomaticPlacementAroundAnObjectHasProbesOutsideIt) {
+  const Aabb cube{{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}};
+  const ProbeGrid g = ProbeGrid::fit_auto_around(cube);
+  EXPECT_EQ(g.counts(), glm::ivec3(16, 16, 16));
+  EXPECT_NEAR(g.spacing().x, 1.0f / 14.0f, 1e-6f);
+  EXPECT_NEAR(g.position(glm::ivec3(0)).x, -0.5f / 14.0f, 1e-6f);
+  EXPECT_NEAR(g.position(glm::ivec3(15)).y, 14.5f / 14.0f, 1e-6f);
+  std::uint32_t inside = 0, inside_without_margin = 0;
+  const ProbeGrid plain = ProbeGrid::fit_auto(cube);
+  for (std::uint32_t i = 0; i < g.probe_count(); ++i) {
+    inside += cube.contains(g.position(i));
+    inside_without_margin += cube.contains(plain.position(i));
+  }
+  EXPECT_EQ(inside, 14u * 14u * 14u);
+  EXPECT_EQ(g.probe_count() - inside, 1352u);
+  EXPECT_EQ(inside_without_margin, 4096u);
+
+  // A flat object (a floor quad): one cell of margin gives a layer of probes above and below it.
+  const ProbeGrid flat = ProbeGrid::fit_auto_around(Aabb{{-7.0f, 0.0f, -7.0f}, {7.0f, 0.0f, 7.0f}});
+  EXPECT_EQ(flat.counts(), glm::ivec3(16, 2, 16));
+  EXPECT_NEAR(flat.position(glm::ivec3(0, 0, 0)).y, -0.5f, 1e-5f);
+  EXPECT_NEAR(flat.position(glm::ivec3(0, 1, 0)).y, 0.5f, 1e-5f);
+  // A point keeps its single probe.
+  EXPECT_EQ(ProbeGrid::fit_auto_around(Aabb{{1.0f, 1.0f, 1.0f}, {1.0f, 1.0f, 1.0f}}).counts(),
+            glm::ivec3(1));
+}

@@ -138,12 +138,13 @@ TEST(ExtremeScene, NonFiniteLightIntensityIsRejected) {
     EXPECT_NE(msg.find("not finite"), std::string::npos) << bad << ": " << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
   }
-  // The largest float is still a (very bright) light.
+  // The largest float is still a (very bright) light: 3e38 cd, converted to W/sr (no sidecar,
+  // so glTF's photometric units).
   TempDir dir("extreme_light_ok");
   const std::string path = write_with(quad_with_light(12345.5), dir, "12345.5", "3.0e38");
   const scene::Scene s = scene::load_scene(path);
   ASSERT_EQ(s.lights.size(), 1u);
-  EXPECT_FLOAT_EQ(s.lights[0].intensity, 3.0e38f);
+  EXPECT_FLOAT_EQ(s.lights[0].intensity, 3.0e38f / scene::kLumensPerWatt);
 }
 
 TEST(ExtremeScene, NonFiniteEmissiveStrengthIsRejected) {

@@ -166,7 +166,7 @@ TEST(Loader, MaterialsLightsCamerasAndTextures) {
   ASSERT_EQ(sc.lights.size(), 1u);
   const scene::Light& l = sc.lights[0];
   EXPECT_EQ(l.type, scene::LightType::Spot);
-  EXPECT_FLOAT_EQ(l.intensity, 40.0f);
+  EXPECT_FLOAT_EQ(l.intensity, 40.0f / scene::kLumensPerWatt);  // 40 cd: no sidecar, glTF units
   EXPECT_FLOAT_EQ(l.outer_cone, 0.6f);
   expect_vec3(l.position, 0, 2, 0);
   expect_vec3(l.direction, 0, -1, 0);
