@@ -3,7 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
-#include <cstring>
+#include <cstddef>
 
 #include "io/atomic_file.h"
 
@@ -16,8 +16,11 @@ std::atomic<bool> g_stop{false};
 std::atomic<int> g_signal{0};
 
 void say(const char* text) {
-  // write(2) is async-signal-safe; a short write of a message is not worth a retry.
-  [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, text, std::strlen(text));
+  // Only async-signal-safe calls here: write(2), and the length counted by hand. A short write
+  // of a message is not worth a retry.
+  std::size_t length = 0;
+  while (text[length] != '\0') ++length;
+  [[maybe_unused]] const ssize_t n = ::write(STDERR_FILENO, text, length);
 }
 
 void on_signal(int signal) {

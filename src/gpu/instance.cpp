@@ -6,6 +6,7 @@
 
 #include "gpu/error.h"
 #include "gpu/device_info.h"
+#include "gpu/sanitizer_pin.h"
 
 namespace ddish::gpu {
 
@@ -74,6 +75,7 @@ Instance::Instance(const InstanceOptions& options) {
   if (result == VK_ERROR_INCOMPATIBLE_DRIVER)
     throw GpuError("no Vulkan driver found (install mesa-vulkan-drivers for the CPU device)");
   check(result, "vkCreateInstance");
+  keep_vulkan_libraries_mapped();  // sanitizer builds: leak reports can name their frames
 
   if (validation) {
     auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(

@@ -26,7 +26,11 @@ ProbeGrid::ProbeGrid(const scene::Aabb& bounds, const glm::ivec3& counts)
     throw std::invalid_argument("probe grid counts must be at least 1 on every axis, got " +
                                 std::to_string(counts.x) + "," + std::to_string(counts.y) + "," +
                                 std::to_string(counts.z));
-  if (std::int64_t(counts.x) * counts.y * counts.z > kMaxProbes)
+  // Each factor and the partial product are bounded before the next multiplication: counts
+  // from a file may be near 2^31 each, and x y z would overflow even 64 bits (found by fuzzing).
+  const std::int64_t xy = std::int64_t(counts.x) * counts.y;
+  if (counts.x > kMaxProbes || counts.y > kMaxProbes || counts.z > kMaxProbes || xy > kMaxProbes ||
+      xy * counts.z > kMaxProbes)
     throw std::invalid_argument("probe grid of " + std::to_string(counts.x) + "x" +
                                 std::to_string(counts.y) + "x" + std::to_string(counts.z) +
                                 " probes is larger than the limit of " +
@@ -49,7 +53,8 @@ ProbeGrid ProbeGrid::fit_spacing(const scene::Aabb& bounds, float spacing) {
       throw std::invalid_argument("probe spacing " + std::to_string(spacing) +
                                   " m gives too many probes for the scene bounds");
     counts[a] = n < 1.0 ? 1 : int(n);
-    total *= counts[a];
+    total *= counts[a];  // <= 2^24 before, so <= 2^48 after: no overflow
+    if (total > kMaxProbes) break;
   }
   if (total > kMaxProbes)
     throw std::invalid_argument("probe spacing " + std::to_string(spacing) + " m gives " +

@@ -1,6 +1,7 @@
 // Volume layout: index <-> cell <-> position, spacing fitting, and the grid coordinate mapping.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <stdexcept>
 
 #include "probes/probe_grid.h"
@@ -70,6 +71,19 @@ TEST(ProbeGrid, RejectsBadInput) {
   EXPECT_THROW(ProbeGrid::fit_spacing(box, 0.0f), std::invalid_argument);
   EXPECT_THROW(ProbeGrid::fit_spacing(box, -1.0f), std::invalid_argument);
   EXPECT_THROW(ProbeGrid::fit_spacing(box, 1e-5f), std::invalid_argument);
+}
+
+// Found by fuzzing DDPV headers: counts near 2^31 overflowed the 64-bit product x y z (UBSan:
+// signed overflow) before the size check; 1e7 probes per axis overflowed fit_spacing's total.
+TEST(ProbeGrid, HugeCountsAreRejectedWithoutOverflow) {
+  Aabb box{{0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}};
+  const int big = std::numeric_limits<int>::max();
+  EXPECT_THROW(ProbeGrid(box, {big, big, big}), std::invalid_argument);
+  EXPECT_THROW(ProbeGrid(box, {1, big, 1}), std::invalid_argument);
+  EXPECT_THROW(ProbeGrid(box, {4096, 4096, 2}), std::invalid_argument);
+  EXPECT_NO_THROW(ProbeGrid(box, {4096, 4096, 1}));  // exactly the limit, 2^24
+  EXPECT_THROW(ProbeGrid::fit_spacing(Aabb{{0.0f, 0.0f, 0.0f}, {1e6f, 1e6f, 1e6f}}, 0.1f),
+               std::invalid_argument);
 }
 
 TEST(ProbeGrid, AutomaticPlacement) {
