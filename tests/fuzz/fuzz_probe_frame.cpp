@@ -7,17 +7,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "fuzz_support.h"
 #include "net/probe_frame.h"
 #include "net/probe_mirror.h"
 #include "probes/probe_volume.h"
 
-namespace {
-
-void require(bool condition) {
-  if (!condition) __builtin_trap();
-}
-
-}  // namespace
+using fuzz::require;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace ddish;

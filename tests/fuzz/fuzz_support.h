@@ -29,6 +29,11 @@ namespace fuzz {
   std::abort();
 }
 
+// A property the target checks of what it decoded; false is a finding.
+inline void require(bool condition, const char* what = "a decoded value broke its invariant") {
+  if (!condition) finding("invariant", what);
+}
+
 // Runs `read`; returns true when it accepted the input, false when it rejected it properly.
 template <typename Read>
 bool accepts(Read&& read) {

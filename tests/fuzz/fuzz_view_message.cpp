@@ -8,15 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "fuzz_support.h"
 #include "net/view_message.h"
 
-namespace {
-
-void require(bool condition) {
-  if (!condition) __builtin_trap();
-}
-
-}  // namespace
+using fuzz::require;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace ddish;
