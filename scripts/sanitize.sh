@@ -7,7 +7,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 t0=$(date +%s)
-cmake -S . -B build-asan -G Ninja -DDDISH_SANITIZE=ON -DDDISH_BENCH=OFF
+# Warnings are not fatal here: the normal build (.ci/run's first part) already fails on any
+# warning, and GCC 12's instrumented -O3 build raises false positives of its own (seen in <regex>).
+cmake -S . -B build-asan -G Ninja -DDDISH_SANITIZE=ON -DDDISH_BENCH=OFF -DDDISH_WERROR=OFF
 cmake --build build-asan -j2
 t1=$(date +%s)
 sup=$PWD/.ci/sanitizers
