@@ -136,6 +136,18 @@ std::vector<std::uint8_t> encode_frame(const ProbeFrame& f, std::uint32_t* satur
   return encode_frame(f.header, f.updated, bytes, f.deactivated, f.deactivated_flags, zstd_level);
 }
 
+// The header's grid, identity and clock fields, in their wire order (shared by the header-only
+// peek and the full decoder).
+static void read_identity_and_clock(ByteReader& r, FrameHeader& h) {
+  for (std::uint32_t& c : h.counts) r.u32(c);
+  r.u64(h.scene_id);
+  r.u64(h.stream_id);
+  r.u64(h.frame);
+  r.u64(h.base_frame);
+  r.i64(h.server_time_us);
+  r.f64(h.scene_time);
+}
+
 bool peek_header(std::span<const std::uint8_t> message, FrameHeader& h) {
   if (message.size() < kFrameHeaderBytes || std::memcmp(message.data(), kFrameMagic, 4) != 0)
     return false;
@@ -153,13 +165,7 @@ bool peek_header(std::span<const std::uint8_t> message, FrameHeader& h) {
   h.encoding = Encoding(encoding);
   h.sh_order = order;
   h.zstd = (flags & kFrameFlagZstd) != 0;
-  for (std::uint32_t& c : h.counts) r.u32(c);
-  r.u64(h.scene_id);
-  r.u64(h.stream_id);
-  r.u64(h.frame);
-  r.u64(h.base_frame);
-  r.i64(h.server_time_us);
-  r.f64(h.scene_time);
+  read_identity_and_clock(r, h);
   return true;
 }
 
@@ -183,13 +189,7 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
   r.u8(order);
   r.u8(flags);
   r.u16(reserved);
-  for (std::uint32_t& c : h.counts) r.u32(c);
-  r.u64(h.scene_id);
-  r.u64(h.stream_id);
-  r.u64(h.frame);
-  r.u64(h.base_frame);
-  r.i64(h.server_time_us);
-  r.f64(h.scene_time);
+  read_identity_and_clock(r, h);
   r.u32(updated);
   r.u32(deactivated);
   r.u32(payload_bytes);
