@@ -26,6 +26,7 @@
 #include "raster/gpu_meshes.h"
 #include "raster/material_textures.h"
 #include "raster/probe_textures.h"
+#include "raster/render_request.h"
 #include "raster/render_target.h"
 #include "raster/shadow_layout.h"
 #include "raster/shading.h"
@@ -123,8 +124,10 @@ class Renderer {
   ProbeUploadStats upload_probes(const probes::ProbeVolume& volume);
 
   // Renders the scene as posed now from every view (all of one size) and reads the images back,
-  // in batches of batch_size() views that share the frame's shadow maps.
-  FrameOutput render(const scene::Scene& scene, std::span<const scene::View> views);
+  // in batches of batch_size() views that share the frame's shadow maps. `request` may keep
+  // the pixels on the GPU and add commands after each batch (raster/render_request.h).
+  FrameOutput render(const scene::Scene& scene, std::span<const scene::View> views,
+                     const RenderRequest& request = {});
   // Views per submission for views of this size (RendererOptions::batch_views).
   std::uint32_t batch_size(std::uint32_t width, std::uint32_t height, std::uint32_t views) const;
 
@@ -140,6 +143,10 @@ class Renderer {
   void ensure_target(std::uint32_t width, std::uint32_t height, std::uint32_t views);
   void record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
                     std::span<const scene::View> views, std::uint32_t layers);
+  // The batch's part of a RenderRequest: makes hdr and display readable, records after_batch.
+  void record_after_batch(VkCommandBuffer cmd, const RenderRequest& request,
+                          std::uint32_t first_view, std::uint32_t count, std::uint32_t width,
+                          std::uint32_t height) const;
   // Converts the first `count` read-back views of the last submission into images.
   void read_views(std::uint32_t width, std::uint32_t height, std::uint32_t count, FrameOutput& out) const;
   // Whether the shadow maps already hold `layers` for the scene as posed now.
