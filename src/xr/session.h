@@ -62,6 +62,8 @@ class Session {
   void request_exit();
 
   EyeSwapchain& eye(int e) { return *eyes_[static_cast<std::size_t>(e)]; }
+  XrSession handle() const { return session_; }
+  XrSpace local_space() const { return local_; }
 
  private:
   void state_changed(XrSessionState state);
