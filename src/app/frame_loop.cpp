@@ -72,7 +72,7 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
       report.counts.probes_uploaded =
           step.changed.empty() ? 0u : renderer_.upload_probes(probes_.volume(), step.changed).probes;
     }
-    raster::FrameOutput frame = renderer_.render(scene_, views);
+    raster::FrameOutput frame = renderer_.render(scene_, views, o.render_request);
     // The GPU passes run while the CPU waits for the submission, so the wait is split into the
     // passes' timestamp durations and the rest (submission, resolve and copies, idle): the
     // stages of a frame add up to its wall time.

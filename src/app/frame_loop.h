@@ -33,16 +33,13 @@
 #include "probes/probe_tracer.h"
 #include "probes/scheduler.h"
 #include "probes/scheduler_record.h"
+#include "raster/renderer.h"
 #include "scene/view.h"
 
 namespace ddish::probes {
 class ProbeVolume;
 }  // namespace ddish::probes
 
-namespace ddish::raster {
-class Renderer;
-struct FrameOutput;
-}  // namespace ddish::raster
 
 namespace ddish::scene {
 struct Scene;
@@ -66,6 +63,8 @@ struct FrameLoopOptions {
   // > 0 (--loop): the scene time wraps at this period (the animation's duration), so an
   // animation plays again and again instead of holding its last pose.
   double loop_period = 0.0;
+  // Passed to the renderer each frame (the live window's GPU hand-off, readback off).
+  raster::RenderRequest render_request;
 };
 
 struct FrameReport {

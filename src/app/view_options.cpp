@@ -128,17 +128,22 @@ float view_aspect(const DisplayChoice& choice, const CameraArgs& camera) {
 
 display::ViewSet make_frame_views(const scene::Scene& scene, const DisplayChoice& choice,
                                   const DisplayArgs& display, const CameraArgs& camera) {
+  return make_frame_views(scene, choice, display, camera, resolve_camera(scene, camera));
+}
+
+display::ViewSet make_frame_views(const scene::Scene& scene, const DisplayChoice& choice,
+                                  const DisplayArgs& display, const CameraArgs& camera,
+                                  const scene::Camera& c) {
   if (choice.single()) {
     // Exactly the single view `ddish render` always drew, so existing outputs do not move.
     display::ViewSet set;
     set.kind = display::ViewSetKind::Single;
     set.name = "single";
-    set.views = {make_view(scene, camera)};
+    set.views = {scene::camera_view(c, camera.width, camera.height)};
     set.layout = display::layout_from_tiles(1, 1, camera.width, camera.height);
     set.aspect = float(camera.width) / float(camera.height);
     return set;
   }
-  const scene::Camera c = resolve_camera(scene, camera);
   const float focal = display.focal_distance.value_or(
       display::focal_distance_to_scene_center(scene, c.eye, c.forward));
   return display::make_view_set(*choice.profile, display::base_camera(c, focal));

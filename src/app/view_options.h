@@ -67,5 +67,10 @@ display::QuiltLayout choose_quilt_layout(int views, int tile_width, int tile_hei
 // its focal distance is --focal-distance, else display::focal_distance_to_scene_center.
 display::ViewSet make_frame_views(const scene::Scene& scene, const DisplayChoice& choice,
                                   const DisplayArgs& display, const CameraArgs& camera);
+// The same from a camera the caller posed (the live window's interactive camera); --camera is
+// then not looked at, --width / --height and the profile are.
+display::ViewSet make_frame_views(const scene::Scene& scene, const DisplayChoice& choice,
+                                  const DisplayArgs& display, const CameraArgs& camera,
+                                  const scene::Camera& posed_camera);
 
 }  // namespace ddish::app

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "gpu/device.h"
 #include "gpu/instance.h"
@@ -19,6 +20,8 @@ struct ContextOptions {
   bool synchronization_validation = false;     // only with validation
   std::optional<std::uint32_t> device_index;   // --device N
   std::string application_name = "ddish";
+  std::vector<std::string> instance_extensions;
+  std::vector<std::string> device_extensions;
 };
 
 class Context {
@@ -26,8 +29,9 @@ class Context {
   explicit Context(const ContextOptions& options = {})
       : instance_({.validation = options.validation,
                    .synchronization_validation = options.synchronization_validation,
-                   .application_name = options.application_name}),
-        device_(instance_, {.index = options.device_index}) {}
+                   .application_name = options.application_name,
+                   .extensions = options.instance_extensions}),
+        device_(instance_, {.index = options.device_index, .extensions = options.device_extensions}) {}
 
   Instance& instance() { return instance_; }
   const Instance& instance() const { return instance_; }

@@ -83,6 +83,10 @@ Device::Device(const Instance& instance, const DeviceOptions& options) : instanc
   info.pNext = &enabled.core;  // features go through the chain, so pEnabledFeatures stays null
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queue_info;
+  std::vector<const char*> extensions;
+  for (const std::string& e : options.extensions) extensions.push_back(e.c_str());
+  info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+  info.ppEnabledExtensionNames = extensions.data();
   check(vkCreateDevice(info_.handle, &info, nullptr, &device_),
         "vkCreateDevice on " + info_.name);
   vkGetDeviceQueue(device_, *info_.queue_family, 0, &queue_);

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -15,6 +17,7 @@ class Instance;
 
 struct DeviceOptions {
   std::optional<std::uint32_t> index;  // --device N; default: see default_device_index()
+  std::vector<std::string> extensions;  // extra device extensions (e.g. VK_KHR_swapchain)
 };
 
 // Optional features, each true only when the device has it (and it was therefore enabled).

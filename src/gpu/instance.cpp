@@ -66,6 +66,7 @@ Instance::Instance(const InstanceOptions& options) {
       messenger_info.pNext = &features;
     }
   }
+  for (const std::string& e : options.extensions) extensions.push_back(e.c_str());
   info.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
   info.ppEnabledLayerNames = layers.data();
   info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -24,6 +25,8 @@ struct InstanceOptions {
   // The layer's synchronization checks (missing barriers, hazards). Slower; only with validation.
   bool synchronization_validation = false;
   std::string application_name = "ddish";
+  // Extra instance extensions (e.g. SDL_Vulkan_GetInstanceExtensions' surface extensions).
+  std::vector<std::string> extensions;
 };
 
 // True when the environment variable DDISH_VALIDATION is set to anything but "" or "0".

@@ -160,7 +160,9 @@ void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
                      options_.exposure);
   if (timer_) timer_->end(cmd, kTonemapRange);
   gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+                      VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
+                          VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_HOST_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
 }
 
 bool Renderer::shadows_current(const scene::Scene& scene,
@@ -208,7 +210,8 @@ void Renderer::read_views(std::uint32_t w, std::uint32_t h, std::uint32_t count,
   }
 }
 
-FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::View> views) {
+FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::View> views,
+                             const RenderRequest& request) {
   if (views.empty()) throw std::invalid_argument("render: no views");
   for (const scene::View& v : views)
     if (v.width != views.front().width || v.height != views.front().height || v.width <= 0 ||
@@ -245,6 +248,8 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
     auto t_submit = t0;
     runner_.run([&](VkCommandBuffer cmd) {
       record_frame(cmd, scene, part, shadow_layers);
+      if (request.after_batch)
+        request.after_batch(cmd, BatchViews{hdr_readback_, display_readback_, first, count, w, h});
       record_ms = ms_since(t0);
       t_submit = std::chrono::steady_clock::now();
     });
@@ -267,7 +272,12 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
       out.stats.tonemap_gpu_ms += ms[kTonemapRange];
     }
     const auto t_read = std::chrono::steady_clock::now();
-    read_views(w, h, count, out);
+    if (request.read_back) {
+      read_views(w, h, count, out);
+    } else {
+      for (std::uint32_t v = 0; v < count; ++v)
+        out.views.push_back(ViewImage{.width = int(w), .height = int(h)});
+    }
     out.stats.readback_ms += ms_since(t_read);
   }
   return out;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -104,6 +105,22 @@ struct FrameStats {
   double readback_ms = 0.0; // CPU: converting the read-back pixels
 };
 
+// A batch's views on the GPU, for RenderRequest::after_batch: `display` packed RGBA8 (R in the
+// low byte, sRGB-encoded), `hdr` RGBA16F texels, view after view, row 0 at the top, width*height
+// per view; views first_view .. first_view + count − 1 of the frame.
+struct BatchViews {
+  const gpu::Buffer& hdr;
+  const gpu::Buffer& display;
+  std::uint32_t first_view, count, width, height;
+};
+
+struct RenderRequest {
+  bool read_back = true;  // false: FrameOutput::views keep their sizes, no pixels
+  // Recorded after each batch's tonemap into the batch's command buffer (the tonemap's writes
+  // are already visible to compute and transfer reads).
+  std::function<void(VkCommandBuffer, const BatchViews&)> after_batch;
+};
+
 struct FrameOutput {
   std::vector<ViewImage> views;
   FrameStats stats;
@@ -124,7 +141,8 @@ class Renderer {
 
   // Renders the scene as posed now from every view (all of one size) and reads the images back,
   // in batches of batch_size() views that share the frame's shadow maps.
-  FrameOutput render(const scene::Scene& scene, std::span<const scene::View> views);
+  FrameOutput render(const scene::Scene& scene, std::span<const scene::View> views,
+                     const RenderRequest& request = {});
   // Views per submission for views of this size (RendererOptions::batch_views).
   std::uint32_t batch_size(std::uint32_t width, std::uint32_t height, std::uint32_t views) const;
 
