@@ -138,6 +138,9 @@ void check(const RenderArgs& a) {
   if (a.live.hold && !a.frames_given)
     throw std::invalid_argument("--hold keeps the last of --frames N on screen: give --frames");
   if (a.live.monitor < 0) throw std::invalid_argument("--monitor must be 0 or more");
+  if (a.live.window && !window::display_server_named())
+    throw std::invalid_argument("--window needs a display server, and neither DISPLAY nor "
+                                "WAYLAND_DISPLAY is set; without --window ddish renders to files");
   if (a.wait_ms < 0 || a.frame_wait_ms < 0 || a.stale_ms < 1)
     throw std::invalid_argument("--wait-ms and --frame-wait-ms must be >= 0, --stale-ms >= 1");
   if (!a.connect.empty()) net::parse_endpoint(a.connect);  // throws with the reason

@@ -1,12 +1,24 @@
 #include "window/sdl_window.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 #include <SDL2/SDL_vulkan.h>
 
 namespace ddish::window {
 
+bool display_server_named() {
+  for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER"}) {
+    const char* v = std::getenv(name);
+    if (v && *v) return true;
+  }
+  return false;
+}
+
 Window::Window(const WindowOptions& o) {
+  if (!display_server_named())
+    throw WindowError("--window needs a display server, and neither DISPLAY nor WAYLAND_DISPLAY "
+                      "is set; without --window ddish renders to files");
   if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
     throw WindowError(std::string("--window needs a display server, and SDL found none (") +
                       SDL_GetError() + "); without --window ddish renders to files");

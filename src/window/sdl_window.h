@@ -28,6 +28,11 @@ struct WindowOptions {
   bool fullscreen = false;  // borderless at the monitor's native mode ("fullscreen desktop")
 };
 
+// Whether the environment names a display server SDL could use (DISPLAY or WAYLAND_DISPLAY, or
+// SDL_VIDEODRIVER set by the user); checked before anything else so that a headless machine gets
+// its one error line before the scene is loaded.
+bool display_server_named();
+
 class Window {
  public:
   // Initialises SDL video and opens the window on the monitor, shrunk (aspect kept) to the
