@@ -4,8 +4,11 @@
 #      the PSNR of a view's image against the in-process render of the same probes;
 #   2. bytes per second, static (cornell_box) against animated (cornell_animated), change-driven
 #      stream at the default threshold, uniform schedule (every probe traced every tick), 30 ticks/s;
-#   3. probe age at a client (server trace end -> upload, ms): median and 95th percentile.
-# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24019; ~2 minutes.
+#   3. probe age at a client (server trace end -> upload, ms): median and 95th percentile;
+#   4. the server's work per tick (update + publish + requests, not idling) against 1, 2, 4 and 8
+#      clients (64x64 views each, visibility schedule), median over the ticks after the first 30;
+#   5. reconnection times from the 4-client x 10-restart fault test (tests/app), per client.
+# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24039; ~3 minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build}
@@ -65,4 +68,39 @@ python3 - "$D/age.json" <<'PY'
 import json, sys, statistics
 a = sorted(f["stream"]["probe_age_ms"] for f in json.load(open(sys.argv[1]))["frames"][10:] if f["stream"]["probe_age_ms"] is not None)
 print(f'{statistics.median(a):.1f},{a[int(0.95 * (len(a) - 1))]:.1f},{len(a)}')
+PY
+
+echo
+echo "clients,server_busy_ms_median,server_probe_ms_median,ticks_with_all_clients"
+port=24030
+for n in 1 2 4 8; do
+  "$B/ddish" serve $S --grid 8,8,8 --probe-samples 64 --bind tcp://127.0.0.1:$port --fps 30 --seconds 40 \
+    --timings "$D/tick$n.json" >"$D/tick.log" 2>&1 &
+  pid=$!
+  wait_for "$D/tick.log" " on tcp://"
+  views=()
+  for c in $(seq 1 $n); do
+    "$B/ddish" view $S --grid 8,8,8 --width 64 --height 64 --msaa 1 --connect tcp://127.0.0.1:$port --frames 150 \
+      --frame-wait-ms 40 --out "$D/tick_view$c" >/dev/null 2>&1 &
+    views+=($!)
+  done
+  wait "${views[@]}" || true
+  kill -TERM $pid 2>/dev/null || true; wait $pid || true
+  python3 - "$D/tick$n.json" "$n" <<'PY'
+import json, sys, statistics
+n = int(sys.argv[2])
+t = [x for x in json.load(open(sys.argv[1]))["ticks"] if x["clients"] == n and x["updated"]][30:]
+print(f'{n},{statistics.median(x["busy_ms"] for x in t):.2f},{statistics.median(x["probe_ms"] for x in t):.2f},{len(t)}')
+PY
+done
+
+echo
+echo "client,reconnections,median_s,max_s"
+DDISH_RECONNECT_FIGURE="$D/reconnect.json" "$B/tests/test_app" --gtest_filter='ServeRestart.*' >"$D/restart.log" 2>&1 ||
+  { tail -20 "$D/restart.log" >&2; exit 1; }
+python3 - "$D/reconnect.json" <<'PY'
+import json, sys, statistics
+for name, c in json.load(open(sys.argv[1])).items():
+    r = c["reconnect_s"]
+    print(f'{name},{len(r)},{statistics.median(r):.3f},{max(r):.3f}')
 PY

@@ -119,7 +119,7 @@ struct RenderArgs {
   std::string connect;   // empty: `ddish render`, in-process probes
   std::string baked;     // --probes FILE: the probes until a server answers
   int wait_ms = 2000;    // frame 0's wait for the server's snapshot
-  int stale_ms = 1000;   // no message for this long: the server is lost
+  int stale_ms = 1000;   // no message for this long, connected: the server is slow
   int frame_wait_ms = 0;  // later frames' wait for the server's next frame
   std::string curve_server_key;  // the server's .pub
   std::string curve_secret;      // this client's .key
@@ -578,7 +578,7 @@ Action make_view(CLI::App& root) {
   cmd->add_option("--frame-wait-ms", a->frame_wait_ms,
                   "each later frame waits up to this long for the server's next frame (0: takes what arrived)")
       ->capture_default_str();
-  cmd->add_option("--stale-ms", a->stale_ms, "no message from the server for this long: it is lost")
+  cmd->add_option("--stale-ms", a->stale_ms, "no message from the server for this long while connected: say it is slow (a dropped connection is a lost server)")
       ->capture_default_str();
   cmd->add_option("--curve-server-key", a->curve_server_key, "the server's public key (.pub): CurveZMQ on")
       ->check(CLI::ExistingFile);

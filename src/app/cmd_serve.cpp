@@ -99,6 +99,7 @@ struct TickRecord {
   bool updated = false;
   double probe_ms = 0.0;
   double tick_ms = 0.0;
+  double busy_ms = 0.0;  // the tick's work: update, publish and the requests answered (not idling)
   std::uint32_t traced = 0;
   net::PublishStats published;
   std::size_t clients = 0;
@@ -115,6 +116,7 @@ void write_timings(const std::string& path, const std::vector<TickRecord>& ticks
                     {"updated", t.updated},
                     {"probe_ms", t.probe_ms},
                     {"tick_ms", t.tick_ms},
+                    {"busy_ms", t.busy_ms},
                     {"probes_traced", t.traced},
                     {"probes_sent", t.published.sent},
                     {"probes_deactivated", t.published.deactivated},
@@ -223,8 +225,9 @@ int run_serve(const ServeArgs& a) {
     }
     server.publish(published.publish(volume, tick, last_update_end_us, scene_time, &rec.published));
     const double used_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tick_start).count();
-    server.serve_requests(int(std::max(0.0, period.count() - used_ms)), snapshot);
+    const double request_ms = server.serve_requests(int(std::max(0.0, period.count() - used_ms)), snapshot);
     rec.tick_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tick_start).count();
+    rec.busy_ms = used_ms + request_ms;
     if (rec.updated && (updates <= 3 || updates % 100 == 0 || updates == a.frames))
       std::fprintf(stderr, "serve: update %d: %u probes traced in %.1f ms, %u sent (%zu bytes), %zu clients\n",
                    updates, rec.traced, rec.probe_ms, rec.published.sent, rec.published.bytes, rec.clients);

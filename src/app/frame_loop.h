@@ -33,13 +33,17 @@
 #include "probes/probe_tracer.h"
 #include "probes/scheduler.h"
 #include "probes/scheduler_record.h"
-#include "raster/renderer.h"
+#include "raster/render_request.h"
 #include "scene/view.h"
 
 namespace ddish::probes {
 class ProbeVolume;
 }  // namespace ddish::probes
 
+namespace ddish::raster {
+class Renderer;
+struct FrameOutput;
+}  // namespace ddish::raster
 
 namespace ddish::scene {
 struct Scene;
@@ -63,7 +67,8 @@ struct FrameLoopOptions {
   // > 0 (--loop): the scene time wraps at this period (the animation's duration), so an
   // animation plays again and again instead of holding its last pose.
   double loop_period = 0.0;
-  // Passed to the renderer each frame (the live window's GPU hand-off, readback off).
+  // Handed to the renderer every frame: a GPU sink (the window's swapchain, OpenXR's) records
+  // its copies after each batch and may leave the pixels on the GPU (raster/render_request.h).
   raster::RenderRequest render_request;
 };
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,8 +21,14 @@ struct ContextOptions {
   bool synchronization_validation = false;     // only with validation
   std::optional<std::uint32_t> device_index;   // --device N
   std::string application_name = "ddish";
+  // The window's surface extensions and VK_KHR_swapchain (gpu/instance.h, gpu/device.h).
   std::vector<std::string> instance_extensions;
   std::vector<std::string> device_extensions;
+  // OpenXR's binding: the runtime creates both handles from the create infos built here, and
+  // names the physical device once the instance exists (it overrides device_index).
+  std::function<VkResult(const VkInstanceCreateInfo&, VkInstance*)> create_instance;
+  std::function<VkPhysicalDevice(VkInstance)> pick_physical;
+  std::function<VkResult(VkPhysicalDevice, const VkDeviceCreateInfo&, VkDevice*)> create_device;
 };
 
 class Context {
@@ -30,8 +37,14 @@ class Context {
       : instance_({.validation = options.validation,
                    .synchronization_validation = options.synchronization_validation,
                    .application_name = options.application_name,
-                   .extensions = options.instance_extensions}),
-        device_(instance_, {.index = options.device_index, .extensions = options.device_extensions}) {}
+                   .extensions = options.instance_extensions,
+                   .create = options.create_instance}),
+        device_(instance_,
+                {.index = options.device_index,
+                 .physical = options.pick_physical ? options.pick_physical(instance_.handle())
+                                                   : VK_NULL_HANDLE,
+                 .extensions = options.device_extensions,
+                 .create = options.create_device}) {}
 
   Instance& instance() { return instance_; }
   const Instance& instance() const { return instance_; }

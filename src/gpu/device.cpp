@@ -61,11 +61,35 @@ DeviceFeatures choose_features(const FeatureChain& has, FeatureChain& enable) {
   return f;
 }
 
+bool device_extension_available(VkPhysicalDevice physical, const std::string& name) {
+  std::uint32_t count = 0;
+  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr) != VK_SUCCESS)
+    return false;
+  std::vector<VkExtensionProperties> extensions(count);
+  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data()) !=
+      VK_SUCCESS)
+    return false;
+  for (const auto& e : extensions)
+    if (name == e.extensionName) return true;
+  return false;
+}
+
+std::uint32_t chosen_device(const std::vector<DeviceInfo>& devices, const DeviceOptions& options) {
+  if (options.physical == VK_NULL_HANDLE) return select_device(devices, options.index);
+  for (std::uint32_t i = 0; i < devices.size(); ++i)
+    if (devices[i].handle == options.physical) {
+      if (!devices[i].queue_family)
+        throw GpuError(devices[i].name + " has no graphics and compute queue");
+      return i;
+    }
+  throw GpuError("the Vulkan physical device asked for is not one of this instance's");
+}
+
 }  // namespace
 
 Device::Device(const Instance& instance, const DeviceOptions& options) : instance_(instance) {
   std::vector<DeviceInfo> devices = enumerate_devices(instance);
-  info_ = devices[select_device(devices, options.index)];
+  info_ = devices[chosen_device(devices, options)];
   vkGetPhysicalDeviceMemoryProperties(info_.handle, &memory_);
 
   FeatureChain available;
@@ -79,15 +103,21 @@ Device::Device(const Instance& instance, const DeviceOptions& options) : instanc
   queue_info.queueCount = 1;
   queue_info.pQueuePriorities = &priority;
 
+  std::vector<const char*> extensions;
+  for (const std::string& name : options.extensions) {
+    if (!device_extension_available(info_.handle, name))
+      throw GpuError(info_.name + " has no " + name + " extension");
+    extensions.push_back(name.c_str());
+  }
+
   VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
   info.pNext = &enabled.core;  // features go through the chain, so pEnabledFeatures stays null
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queue_info;
-  std::vector<const char*> extensions;
-  for (const std::string& e : options.extensions) extensions.push_back(e.c_str());
   info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
   info.ppEnabledExtensionNames = extensions.data();
-  check(vkCreateDevice(info_.handle, &info, nullptr, &device_),
+  check(options.create ? options.create(info_.handle, info, &device_)
+                       : vkCreateDevice(info_.handle, &info, nullptr, &device_),
         "vkCreateDevice on " + info_.name);
   vkGetDeviceQueue(device_, *info_.queue_family, 0, &queue_);
 }

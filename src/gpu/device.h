@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,7 +18,14 @@ class Instance;
 
 struct DeviceOptions {
   std::optional<std::uint32_t> index;  // --device N; default: see default_device_index()
-  std::vector<std::string> extensions;  // extra device extensions (e.g. VK_KHR_swapchain)
+  // Set: this physical device and no other (the one an OpenXR runtime names); overrides index.
+  VkPhysicalDevice physical = VK_NULL_HANDLE;
+  // Device extensions beyond the renderer's (VK_KHR_swapchain for a window). A missing one
+  // throws GpuError naming it and the device.
+  std::vector<std::string> extensions;
+  // Set: called instead of vkCreateDevice with the create info built here (OpenXR's
+  // xrCreateVulkanDeviceKHR). The device is still destroyed here.
+  std::function<VkResult(VkPhysicalDevice, const VkDeviceCreateInfo&, VkDevice*)> create;
 };
 
 // Optional features, each true only when the device has it (and it was therefore enabled).

@@ -15,6 +15,21 @@ bool validation_requested_by_environment() {
   return value != nullptr && value[0] != '\0' && std::strcmp(value, "0") != 0;
 }
 
+namespace {
+
+bool instance_extension_available(const std::string& name) {
+  std::uint32_t count = 0;
+  if (vkEnumerateInstanceExtensionProperties(nullptr, &count, nullptr) != VK_SUCCESS) return false;
+  std::vector<VkExtensionProperties> extensions(count);
+  if (vkEnumerateInstanceExtensionProperties(nullptr, &count, extensions.data()) != VK_SUCCESS)
+    return false;
+  for (const auto& e : extensions)
+    if (name == e.extensionName) return true;
+  return false;
+}
+
+}  // namespace
+
 bool validation_layer_available() {
   std::uint32_t count = 0;
   if (vkEnumerateInstanceLayerProperties(&count, nullptr) != VK_SUCCESS) return false;
@@ -66,13 +81,18 @@ Instance::Instance(const InstanceOptions& options) {
       messenger_info.pNext = &features;
     }
   }
-  for (const std::string& e : options.extensions) extensions.push_back(e.c_str());
+  for (const std::string& name : options.extensions) {
+    if (!instance_extension_available(name))
+      throw GpuError("the Vulkan instance has no " + name + " extension");
+    extensions.push_back(name.c_str());
+  }
   info.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
   info.ppEnabledLayerNames = layers.data();
   info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
   info.ppEnabledExtensionNames = extensions.data();
 
-  VkResult result = vkCreateInstance(&info, nullptr, &instance_);
+  VkResult result = options.create ? options.create(info, &instance_)
+                                   : vkCreateInstance(&info, nullptr, &instance_);
   if (result == VK_ERROR_INCOMPATIBLE_DRIVER)
     throw GpuError("no Vulkan driver found (install mesa-vulkan-drivers for the CPU device)");
   check(result, "vkCreateInstance");

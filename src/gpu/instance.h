@@ -1,8 +1,11 @@
-// The Vulkan instance: the loader, an optional validation layer and nothing for windows (ddish is
-// headless, so no surface extension is ever asked for).
+// The Vulkan instance: the loader and an optional validation layer. Headless by default: a
+// surface extension is only there when a caller (the live window) lists it, and a caller that
+// must create the instance itself (OpenXR's xrCreateVulkanInstanceKHR) gets the create info
+// gpu/ built, so layers and extensions are chosen in one place.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,8 +28,12 @@ struct InstanceOptions {
   // The layer's synchronization checks (missing barriers, hazards). Slower; only with validation.
   bool synchronization_validation = false;
   std::string application_name = "ddish";
-  // Extra instance extensions (e.g. SDL_Vulkan_GetInstanceExtensions' surface extensions).
+  // Instance extensions beyond validation's (a window's surface extensions). A missing one
+  // throws GpuError naming it.
   std::vector<std::string> extensions;
+  // Set: called instead of vkCreateInstance with the create info built here (the OpenXR
+  // binding creates the instance through its runtime). The instance is still destroyed here.
+  std::function<VkResult(const VkInstanceCreateInfo&, VkInstance*)> create;
 };
 
 // True when the environment variable DDISH_VALIDATION is set to anything but "" or "0".

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <stdexcept>
 #include <set>
 
@@ -35,7 +36,12 @@ struct ProbeClient::Impl {
   zmq::context_t context{1};
   zmq::socket_t subscriber{context, zmq::socket_type::sub};
   zmq::socket_t requests{context, zmq::socket_type::dealer};
+  // The connection events of the subscription and of the request socket: a snapshot can come
+  // back on the latter before the former has connected, so either one dropping is a loss.
+  zmq::socket_t sub_events{context, zmq::socket_type::pair};
+  zmq::socket_t request_events{context, zmq::socket_type::pair};
   std::int64_t last_message_us = 0;
+  bool slow_logged = false;
   std::int64_t last_request_us = 0;
   bool lost = false;
   bool ever_synced = false;
@@ -56,7 +62,9 @@ struct ProbeClient::Impl {
       s->set(zmq::sockopt::heartbeat_timeout, 4 * o.heartbeat_ms);
       s->set(zmq::sockopt::heartbeat_ttl, 4 * o.heartbeat_ms);
       s->set(zmq::sockopt::reconnect_ivl, 100);
-      s->set(zmq::sockopt::reconnect_ivl_max, 500);
+      // No back-off: a subscription still waiting out a long reconnect interval after the
+      // snapshot came back on the request socket would look like a lost server again.
+      s->set(zmq::sockopt::reconnect_ivl_max, 0);
     }
     if (o.curve) {
       std::array<std::uint8_t, 32> server{}, pub{}, secret{};
@@ -69,10 +77,38 @@ struct ProbeClient::Impl {
         s->set(zmq::sockopt::curve_secretkey, zmq::buffer(secret));
       }
     }
+    // Before connecting, so that the first connections' events are seen too.
+    watch(subscriber, sub_events, "subscription");
+    watch(requests, request_events, "requests");
     subscriber.set(zmq::sockopt::subscribe, "");
     requests.set(zmq::sockopt::immediate, 1);  // no requests queued for a dead connection
     subscriber.connect(endpoint.publisher());
     requests.connect(endpoint.requests());
+  }
+
+  void watch(zmq::socket_t& socket, zmq::socket_t& events, const char* what) {
+    const std::string address = fmt::format("inproc://ddish-{}-{}", what, static_cast<void*>(this));
+    if (zmq_socket_monitor(socket.handle(), address.c_str(),
+                           ZMQ_EVENT_CONNECTED | ZMQ_EVENT_DISCONNECTED) != 0)
+      throw zmq::error_t();
+    events.set(zmq::sockopt::linger, 0);
+    events.connect(address);
+  }
+
+  // Reads the connection events; true when a connection to the server dropped since the last
+  // call.
+  bool disconnected() {
+    bool dropped = false;
+    for (zmq::socket_t* events : {&sub_events, &request_events})
+      while (true) {
+        std::vector<zmq::message_t> parts;
+        if (!zmq::recv_multipart(*events, std::back_inserter(parts), zmq::recv_flags::dontwait)) break;
+        if (parts.empty() || parts[0].size() < 2) continue;
+        std::uint16_t event = 0;
+        std::memcpy(&event, parts[0].data(), 2);  // libzmq's event frame: u16 event, u32 value
+        dropped |= event == ZMQ_EVENT_DISCONNECTED;
+      }
+    return dropped;
   }
 
   void log(const std::string& line) {
@@ -127,8 +163,9 @@ struct ProbeClient::Impl {
       ++snapshots;
       if (lost) {
         ++reconnects;
-        log(fmt::format("probe server back at {}: snapshot of frame {}", options.connect,
-                        r.frame.header.frame));
+        log(fmt::format("probe server back at {}: snapshot of frame {} ({} probes; {} held ones kept "
+                        "until it sends them)",
+                        options.connect, r.frame.header.frame, r.frame.updated.size(), mirror.kept()));
       } else if (!ever_synced) {
         log(fmt::format("probes from {}: snapshot of frame {} ({} probes)", options.connect,
                         r.frame.header.frame, r.frame.updated.size()));
@@ -179,16 +216,27 @@ ClientPoll ProbeClient::poll(int wait_ms) {
   ClientPoll out;
   const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms);
   while (true) {
+    // What is queued first: a frame that took longer than stale_ms to render must not make a
+    // live server look lost (the messages it sent meanwhile are waiting).
+    s.receive(out);
     const std::int64_t now = steady_now_us();
-    if (s.ever_synced && !s.lost && s.last_message_us > 0 &&
-        now - s.last_message_us > std::int64_t(s.options.stale_ms) * 1000) {
+    if (s.disconnected() && s.ever_synced && !s.lost) {
       s.lost = true;
       s.mirror.desync();
       s.log(fmt::format("lost the probe server at {}: rendering with the probes of frame {}",
                         s.options.connect, s.mirror.frame()));
     }
-    if (!s.mirror.synced()) s.request_snapshot(now);
-    s.receive(out);
+    const bool silent = s.last_message_us > 0 &&
+                        now - s.last_message_us > std::int64_t(s.options.stale_ms) * 1000;
+    if (silent && s.ever_synced && !s.lost && !s.slow_logged)
+      s.log(fmt::format("no probes from {} for {} ms, the connection is up: the server is slow; "
+                        "rendering with the probes of frame {}",
+                        s.options.connect, (now - s.last_message_us) / 1000, s.mirror.frame()));
+    s.slow_logged = silent;
+    if (!s.mirror.synced()) {
+      s.request_snapshot(now);
+      s.receive(out);
+    }
     if (out.frames_applied > 0 || std::chrono::steady_clock::now() >= end) break;
     std::array<zmq::pollitem_t, 2> items = {
         zmq::pollitem_t{s.subscriber.handle(), 0, ZMQ_POLLIN, 0},

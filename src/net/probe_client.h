@@ -2,9 +2,13 @@
 // DEALER on its request socket (probe_server.h). It subscribes first, then asks for a snapshot,
 // and follows deltas from there (probe_mirror.h); a delta it cannot apply (a lost message, a
 // restarted server) makes it ask again. Its clocks:
-//   - staleness: milliseconds since the last message from the server; past stale_ms the server
-//     counts as lost (one log line), the probes are kept, and snapshot requests go on until a
-//     keyframe comes back (one log line);
+//   - liveness comes from the transport: the subscription's connection dropping (a closed
+//     socket, or ZMTP heartbeats unanswered for 4 x heartbeat_ms) is a lost server (one log
+//     line); the probes are kept, and snapshot requests go on until a keyframe comes back (one
+//     log line). Silence alone is not a loss: a server whose update takes longer than stale_ms
+//     (its first one, a big scene) is slow, not gone, and its next delta still applies;
+//   - staleness: milliseconds since the last message from the server, reported every frame;
+//     past stale_ms with the connection up, one log line says the server is slow;
 //   - the server's clock: each snapshot reply carries the server's steady-clock time, and the
 //     offset is the reply's time less the midpoint of the request's round trip, so the age of
 //     a probe update (server trace end -> now) does not assume a shared clock.
@@ -36,7 +40,7 @@ struct CurveClientKeys {
 struct ClientOptions {
   std::string connect = "tcp://127.0.0.1:5570";
   int heartbeat_ms = 250;
-  int stale_ms = 1000;          // no message for this long: the server is lost
+  int stale_ms = 1000;          // no message for this long, connection up: say the server is slow
   int snapshot_retry_ms = 250;  // between snapshot requests while unsynced
   std::function<void(const std::string&)> log;
   std::optional<CurveClientKeys> curve;  // none: plaintext

@@ -31,12 +31,20 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
   if (!matches(f.header)) return ApplyOutcome::kSceneMismatch;
   const std::size_t n = std::size_t(volume_.coefficient_count());
   if (f.header.kind == FrameKind::kKeyframe) {
+    kept_ = 0;
     if (synced_ && f.header.stream_id == stream_ && f.header.frame <= frame_) return ApplyOutcome::kOld;
+    // A restarted server of the same scene and grid has not traced most probes yet: the probes
+    // the client holds stay until the new stream sends them (each probe's first update is
+    // always sent), rather than the indirect light going dark after every restart.
+    const bool restarted = stream_ != 0 && f.header.stream_id != stream_;
     std::size_t next = 0;
     for (std::uint32_t i = 0; i < volume_.probe_count(); ++i) {
       if (next < f.updated.size() && f.updated[next] == i) {
         set_probe(volume_, i, f.coefficients.data() + next * n);
         ++next;
+      } else if (restarted && volume_.state(i).active() && volume_.state(i).updates > 0) {
+        ++kept_;
+        continue;
       } else {
         volume_.deactivate(i, false);
       }

@@ -4,8 +4,10 @@
 // probe inactive); a delta applies only to the frame it was made from (its base frame), so a
 // client never mixes states: an older frame is dropped (the Clone pattern's "updates older than
 // the snapshot"), and a delta from a frame the client does not hold says that a snapshot is
-// needed. A keyframe of another stream (a restarted server) replaces the state whatever its frame
-// number; a delta of another stream is a gap. Frames of another scene or grid are never applied.
+// needed. A keyframe of another stream (a restarted server) is taken whatever its frame number,
+// and keeps the active probes the client holds that it does not carry (not traced yet by the new
+// server) until the new stream sends them; a delta of another stream is a gap. Frames of another
+// scene or grid are never applied.
 #pragma once
 
 #include <cstdint>
@@ -36,6 +38,8 @@ class ProbeMirror {
   bool synced() const { return synced_; }
   std::uint64_t frame() const { return frame_; }
   std::uint64_t stream() const { return stream_; }
+  // Probes the last keyframe left as they were (a restarted server had not sent them yet).
+  std::uint32_t kept() const { return kept_; }
   // Forgets the held frame, keeping the probes (after a lost server: the next keyframe,
   // whatever its frame number, is taken).
   void desync() { synced_ = false; }
@@ -49,6 +53,7 @@ class ProbeMirror {
   bool synced_ = false;
   std::uint64_t frame_ = 0;
   std::uint64_t stream_ = 0;
+  std::uint32_t kept_ = 0;
 };
 
 }  // namespace ddish::net

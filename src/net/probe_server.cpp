@@ -126,27 +126,31 @@ void ProbeServer::publish(std::span<const std::uint8_t> frame) {
     impl_->bytes += frame.size();
 }
 
-void ProbeServer::serve_requests(int timeout_ms,
-                                 const std::function<std::vector<std::uint8_t>()>& snapshot) {
+double ProbeServer::serve_requests(int timeout_ms,
+                                   const std::function<std::vector<std::uint8_t>()>& snapshot) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+  double busy_ms = 0.0;
   do {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         end - std::chrono::steady_clock::now());
     zmq::pollitem_t item{impl_->requests.handle(), 0, ZMQ_POLLIN, 0};
     try {
       zmq::poll(&item, 1, std::chrono::milliseconds(std::max<std::int64_t>(0, left.count())));
+      const auto busy_start = std::chrono::steady_clock::now();
       while (true) {
         std::vector<zmq::message_t> parts;
         if (!zmq::recv_multipart(impl_->requests, std::back_inserter(parts), zmq::recv_flags::dontwait))
           break;
         impl_->handle(parts, snapshot);
       }
+      busy_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - busy_start).count();
     } catch (const zmq::error_t& e) {
       if (e.num() != EINTR) throw;
       break;  // a signal (SIGINT, SIGTERM): let the caller look at it now
     }
   } while (std::chrono::steady_clock::now() < end);
   impl_->forget_silent_clients();
+  return busy_ms;
 }
 
 std::vector<scene::View> ProbeServer::views() const {

@@ -53,7 +53,8 @@ class ProbeServer {
 
   // Answers requests for timeout_ms (polls at least once; returns early when a signal interrupts
   // the wait); `snapshot` makes each reply's keyframe.
-  void serve_requests(int timeout_ms, const std::function<std::vector<std::uint8_t>()>& snapshot);
+  // Returns the milliseconds spent handling requests (the rest of timeout_ms was idle).
+  double serve_requests(int timeout_ms, const std::function<std::vector<std::uint8_t>()>& snapshot);
 
   // The union of the views of the clients heard from within the timeout.
   std::vector<scene::View> views() const;

@@ -120,10 +120,11 @@ void Renderer::ensure_target(std::uint32_t width, std::uint32_t height, std::uin
                                              ? forward_->views_per_pass()
                                              : 0u});
   const VkDeviceSize pixels = VkDeviceSize{width} * height * views;
-  hdr_readback_ = gpu::Buffer(device_, pixels * 8, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                              gpu::MemoryUse::readback);
-  display_readback_ = gpu::Buffer(device_, pixels * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                  gpu::MemoryUse::readback);
+  // Transfer sources too: a RenderRequest's after_batch may copy views out of them.
+  const VkBufferUsageFlags usage =
+      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+  hdr_readback_ = gpu::Buffer(device_, pixels * 8, usage, gpu::MemoryUse::readback);
+  display_readback_ = gpu::Buffer(device_, pixels * 4, usage, gpu::MemoryUse::readback);
 }
 
 void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
@@ -160,9 +161,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
                      options_.exposure);
   if (timer_) timer_->end(cmd, kTonemapRange);
   gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_HOST_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
-                          VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_HOST_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+                      VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
 }
 
 bool Renderer::shadows_current(const scene::Scene& scene,
@@ -190,6 +189,21 @@ std::uint32_t Renderer::batch_size(std::uint32_t width, std::uint32_t height,
     if (options_.view_method == ViewMethod::multiview && g > block) g -= g % block;
   }
   return std::min({g, views, FrameResources::kMaxViews});
+}
+
+void Renderer::record_after_batch(VkCommandBuffer cmd, const RenderRequest& request,
+                                  std::uint32_t first_view, std::uint32_t count,
+                                  std::uint32_t width, std::uint32_t height) const {
+  if (!request.after_batch) return;
+  // The copy into hdr (transfer) and the tonemap into display (compute) before whatever the
+  // caller reads them with.
+  gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT |
+                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                      VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_SHADER_READ_BIT);
+  request.after_batch(cmd, BatchViews{hdr_readback_, display_readback_, first_view, count, width,
+                                      height});
 }
 
 void Renderer::read_views(std::uint32_t w, std::uint32_t h, std::uint32_t count, FrameOutput& out) const {
@@ -248,8 +262,7 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
     auto t_submit = t0;
     runner_.run([&](VkCommandBuffer cmd) {
       record_frame(cmd, scene, part, shadow_layers);
-      if (request.after_batch)
-        request.after_batch(cmd, BatchViews{hdr_readback_, display_readback_, first, count, w, h});
+      record_after_batch(cmd, request, first, count, w, h);
       record_ms = ms_since(t0);
       t_submit = std::chrono::steady_clock::now();
     });
@@ -271,13 +284,13 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
       out.stats.forward_gpu_ms += ms[kForwardRange];
       out.stats.tonemap_gpu_ms += ms[kTonemapRange];
     }
-    const auto t_read = std::chrono::steady_clock::now();
-    if (request.read_back) {
-      read_views(w, h, count, out);
-    } else {
+    if (!request.read_back) {
       for (std::uint32_t v = 0; v < count; ++v)
-        out.views.push_back(ViewImage{.width = int(w), .height = int(h)});
+        out.views.push_back({.width = static_cast<int>(w), .height = static_cast<int>(h)});
+      continue;
     }
+    const auto t_read = std::chrono::steady_clock::now();
+    read_views(w, h, count, out);
     out.stats.readback_ms += ms_since(t_read);
   }
   return out;

@@ -10,7 +10,6 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -27,6 +26,7 @@
 #include "raster/gpu_meshes.h"
 #include "raster/material_textures.h"
 #include "raster/probe_textures.h"
+#include "raster/render_request.h"
 #include "raster/render_target.h"
 #include "raster/shadow_layout.h"
 #include "raster/shading.h"
@@ -105,22 +105,6 @@ struct FrameStats {
   double readback_ms = 0.0; // CPU: converting the read-back pixels
 };
 
-// A batch's views on the GPU, for RenderRequest::after_batch: `display` packed RGBA8 (R in the
-// low byte, sRGB-encoded), `hdr` RGBA16F texels, view after view, row 0 at the top, width*height
-// per view; views first_view .. first_view + count − 1 of the frame.
-struct BatchViews {
-  const gpu::Buffer& hdr;
-  const gpu::Buffer& display;
-  std::uint32_t first_view, count, width, height;
-};
-
-struct RenderRequest {
-  bool read_back = true;  // false: FrameOutput::views keep their sizes, no pixels
-  // Recorded after each batch's tonemap into the batch's command buffer (the tonemap's writes
-  // are already visible to compute and transfer reads).
-  std::function<void(VkCommandBuffer, const BatchViews&)> after_batch;
-};
-
 struct FrameOutput {
   std::vector<ViewImage> views;
   FrameStats stats;
@@ -140,7 +124,8 @@ class Renderer {
   ProbeUploadStats upload_probes(const probes::ProbeVolume& volume);
 
   // Renders the scene as posed now from every view (all of one size) and reads the images back,
-  // in batches of batch_size() views that share the frame's shadow maps.
+  // in batches of batch_size() views that share the frame's shadow maps. `request` may keep
+  // the pixels on the GPU and add commands after each batch (raster/render_request.h).
   FrameOutput render(const scene::Scene& scene, std::span<const scene::View> views,
                      const RenderRequest& request = {});
   // Views per submission for views of this size (RendererOptions::batch_views).
@@ -158,6 +143,10 @@ class Renderer {
   void ensure_target(std::uint32_t width, std::uint32_t height, std::uint32_t views);
   void record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
                     std::span<const scene::View> views, std::uint32_t layers);
+  // The batch's part of a RenderRequest: makes hdr and display readable, records after_batch.
+  void record_after_batch(VkCommandBuffer cmd, const RenderRequest& request,
+                          std::uint32_t first_view, std::uint32_t count, std::uint32_t width,
+                          std::uint32_t height) const;
   // Converts the first `count` read-back views of the last submission into images.
   void read_views(std::uint32_t width, std::uint32_t height, std::uint32_t count, FrameOutput& out) const;
   // Whether the shadow maps already hold `layers` for the scene as posed now.

@@ -5,12 +5,8 @@
 // client without a server says what it renders with, and bad options exit 2. Every server runs
 // with --seconds, so nothing outlives a test; ports differ per test and per process.
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <chrono>
-#include <fcntl.h>
 #include <string>
 #include <thread>
 #include <vector>
@@ -19,68 +15,15 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
-
-extern char** environ;
+#include "serve_process.h"
 
 namespace {
 
 using cli::quote;
-
-std::string address(int test) {
-  return "tcp://127.0.0.1:" + std::to_string(21000 + int(getpid() % 3000) * 12 + 2 * test);
-}
-
-// A background ddish (the server), stdout and stderr to files; killed by the destructor.
-class Process {
- public:
-  Process(const std::vector<std::string>& args, const cli::fs::path& log) {
-    std::vector<char*> argv;
-    std::vector<std::string> all = {DDISH_EXE};
-    all.insert(all.end(), args.begin(), args.end());
-    for (std::string& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, (log.string() + ".out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, log.string().c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (posix_spawn(&pid_, DDISH_EXE, &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  ~Process() { kill(SIGKILL); }
-  void kill(int signal) {
-    if (pid_ <= 0) return;
-    ::kill(pid_, signal);
-    int status = 0;
-    waitpid(pid_, &status, 0);
-    pid_ = -1;
-  }
-  // Waits (bounded) for the process to exit by itself; its exit code, or -1.
-  int wait(double seconds) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    while (std::chrono::steady_clock::now() < end) {
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    return -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-};
-
-// Waits (bounded) until the file contains `text`.
-bool wait_for(const cli::fs::path& file, const std::string& text, double seconds) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (std::chrono::steady_clock::now() < end) {
-    if (cli::slurp(file).find(text) != std::string::npos) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return false;
-}
+using cli::address;
+using cli::count_in;
+using cli::Process;
+using cli::wait_for;
 
 std::string scene_path(const char* name) { return std::string(DDISH_SOURCE_DIR) + "/scenes/" + name; }
 
@@ -155,14 +98,6 @@ TEST_F(ServeView, LateJoinerRendersEveryProbeInItsFirstFrame) {
   EXPECT_EQ(f["probes_changed"].get<int>(), 64);  // the keyframe sets every probe at once
   EXPECT_EQ(f["probes_never_updated"].get<int>(), 0);
   EXPECT_GT(f["probes_active"].get<int>(), 0);
-}
-
-// Occurrences of `text` in a file.
-std::size_t count_in(const cli::fs::path& file, const std::string& text) {
-  const std::string s = cli::slurp(file);
-  std::size_t n = 0;
-  for (std::size_t at = 0; (at = s.find(text, at)) != std::string::npos; at += text.size()) ++n;
-  return n;
 }
 
 // The server is killed (SIGKILL) and restarted 3 times while one client renders; the client never

@@ -162,5 +162,82 @@ TEST(DeviceIndex, NoDriverAtAllIsOneClearLine) {
   }
 }
 
+
+TEST(DeviceCreation, CallersCanCreateTheHandlesFromTheCreateInfosBuiltHere) {
+  // What OpenXR's binding does (xrCreateVulkanInstanceKHR / xrCreateVulkanDeviceKHR): the
+  // caller creates the handles itself from gpu/'s create infos; gpu/ still destroys them.
+  int instances = 0, devices = 0, picks = 0;
+  std::uint32_t layers_seen = 0;
+  VkPhysicalDevice picked = VK_NULL_HANDLE;
+  ContextOptions options = validated_options();
+  options.create_instance = [&](const VkInstanceCreateInfo& info, VkInstance* out) {
+    ++instances;
+    layers_seen = info.enabledLayerCount;
+    return vkCreateInstance(&info, nullptr, out);
+  };
+  options.pick_physical = [&](VkInstance instance) {
+    ++picks;
+    std::uint32_t count = 0;
+    vkEnumeratePhysicalDevices(instance, &count, nullptr);
+    std::vector<VkPhysicalDevice> all(count);
+    vkEnumeratePhysicalDevices(instance, &count, all.data());
+    picked = all.back();  // not necessarily the default: the caller's choice must hold
+    return picked;
+  };
+  options.create_device = [&](VkPhysicalDevice physical, const VkDeviceCreateInfo& info,
+                              VkDevice* out) {
+    ++devices;
+    EXPECT_EQ(physical, picked);
+    return vkCreateDevice(physical, &info, nullptr, out);
+  };
+  std::shared_ptr<const ValidationLog> log;
+  {
+    Context context(options);
+    log = context.instance().shared_validation();
+    EXPECT_EQ(context.device().physical(), picked);
+    EXPECT_TRUE(context.instance().validation_enabled());
+    EXPECT_NO_THROW(context.device().wait_idle());
+  }
+  EXPECT_EQ(instances, 1);
+  EXPECT_EQ(picks, 1);
+  EXPECT_EQ(devices, 1);
+  EXPECT_EQ(layers_seen, 1u);  // the validation layer went into the caller's create info
+  EXPECT_EQ(log->errors(), 0u) << describe_errors(*log);  // destroyed here, nothing leaked
+}
+
+TEST(DeviceCreation, AMissingExtensionIsNamed) {
+  try {
+    Context context({.device_extensions = {"VK_DDISH_no_such_extension"}});
+    FAIL() << "a device was made with an extension nobody has";
+  } catch (const GpuError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(" has no VK_DDISH_no_such_extension extension"), std::string::npos)
+        << message;
+  }
+  try {
+    Context context({.instance_extensions = {"VK_DDISH_no_such_instance_extension"}});
+    FAIL() << "an instance was made with an extension nobody has";
+  } catch (const GpuError& e) {
+    EXPECT_STREQ(e.what(), "the Vulkan instance has no VK_DDISH_no_such_instance_extension extension");
+  }
+}
+
+TEST(DeviceCreation, ListedExtensionsAreEnabled) {
+  // A window's pair: VK_KHR_surface on the instance, VK_KHR_swapchain on the device (which needs
+  // the former: validation says so). Neither needs a display server until a surface is made.
+  ContextOptions options = validated_options();
+  options.instance_extensions = {VK_KHR_SURFACE_EXTENSION_NAME};
+  options.device_extensions = {VK_KHR_SWAPCHAIN_EXTENSION_NAME};
+  std::shared_ptr<const ValidationLog> log;
+  {
+    Context with(options);
+    log = with.instance().shared_validation();
+    EXPECT_NE(vkGetDeviceProcAddr(with.device().handle(), "vkCreateSwapchainKHR"), nullptr);
+    Context without(validated_options());
+    EXPECT_EQ(vkGetDeviceProcAddr(without.device().handle(), "vkCreateSwapchainKHR"), nullptr);
+  }
+  EXPECT_EQ(log->errors(), 0u) << describe_errors(*log);
+}
+
 }  // namespace
 }  // namespace ddish::gpu::test

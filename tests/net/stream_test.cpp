@@ -177,5 +177,47 @@ TEST(Mirror, OldGapAndOtherSceneFrames) {
   EXPECT_EQ(mirror.frame(), 2u);
 }
 
+TEST(Mirror, ARestartedServerLeavesTheHeldProbesUntilItSendsThem) {
+  std::mt19937_64 rng(6);
+  probes::ProbeVolume server = make_volume(rng);
+  server.deactivate(7, true);
+  PublishedProbes pub(server.grid(), 2, kScene, 1, {});
+  probes::ProbeVolume client = client_volume();
+  ProbeMirror mirror(client, kScene);
+  std::vector<std::uint32_t> changed;
+  pub.publish(server, 1, 0, 0.0);
+  ASSERT_EQ(mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(mirror.kept(), 0u);
+  const std::vector<glm::vec3> held(client.coefficients(3).begin(), client.coefficients(3).end());
+  const std::vector<glm::vec3> held40(client.coefficients(40).begin(), client.coefficients(40).end());
+
+  // The new server has traced probes 0..9 only (probe 7 is inside geometry for it too).
+  probes::ProbeVolume fresh = client_volume();
+  for (std::uint32_t i = 0; i < 10; ++i) {
+    fresh.set_sh(i, test::radiance_probe(rng, 2, 2.0f));
+    fresh.state(i).flags = 0;
+    fresh.state(i).updates = 1;
+  }
+  fresh.deactivate(7, true);
+  PublishedProbes restarted(server.grid(), 2, kScene, 2, {});
+  restarted.publish(fresh, 1, 0, 0.0);
+  mirror.desync();  // the client noticed the loss
+  ASSERT_EQ(mirror.apply(decode_ok(restarted.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(mirror.kept(), 64u - 10u);  // 10..63 kept: active, with what the old server sent
+  EXPECT_EQ(changed.size(), 10u);
+  EXPECT_FALSE(client.state(7).active());
+  EXPECT_TRUE(client.state(40).active());
+  for (std::size_t j = 0; j < 9; ++j) EXPECT_NE(client.coefficients(3)[j], held[j]);  // resent
+  for (std::size_t j = 0; j < 9; ++j) EXPECT_EQ(client.coefficients(40)[j], held40[j]);  // kept
+  EXPECT_NE(held40[0], glm::vec3(0.0f));
+
+  // A keyframe of the same stream (a re-snapshot after a lost delta) is the whole truth.
+  mirror.desync();
+  restarted.publish(fresh, 2, 0, 0.0);
+  ASSERT_EQ(mirror.apply(decode_ok(restarted.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(mirror.kept(), 0u);
+  EXPECT_FALSE(client.state(40).active());
+}
+
 }  // namespace
 }  // namespace ddish::net

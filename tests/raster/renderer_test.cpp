@@ -8,15 +8,18 @@
 #include <vector>
 
 #include "../gpu/gpu_test.h"
+#include "gpu/buffer.h"
 #include "gpu/commands.h"
 #include "gpu/device.h"
 #include "gpu/error.h"
+#include "gpu/transfer.h"
 #include "probes/probe_grid.h"
 #include "probes/probe_volume.h"
 #include "raster/material_textures.h"
 #include "raster/renderer.h"
 #include "raster_scenes.h"
 #include "scene/scene.h"
+#include "sh/packing.h"
 #include "scene/view.h"
 
 namespace ddish::raster::test {
@@ -160,6 +163,58 @@ TEST_F(RendererTest, BatchesOfViewsEqualOneSubmission) {
   EXPECT_GE(big, 1u);
   EXPECT_LE(std::uint64_t{big} * 1024 * 910 * (4 * 12 + 20), RendererOptions::kBatchTargetBytes);
   EXPECT_GT(std::uint64_t{big + 1} * 1024 * 910 * (4 * 12 + 20), RendererOptions::kBatchTargetBytes);
+}
+
+TEST_F(RendererTest, AfterBatchCommandsSeeEveryViewOnTheGpu) {
+  // A RenderRequest's after_batch (the window's and OpenXR's way to take the views) copies each
+  // batch out of the renderer's buffers; the copies equal the read-back images bit for bit,
+  // though the batches reuse one target, and with read_back off nothing comes to the CPU.
+  scene::Scene s = spot_scene();
+  const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {2, 2, 2}));
+  std::vector<scene::View> views;
+  for (int i = 0; i < 7; ++i)
+    views.push_back(scene::look_at_view({-0.9f + 0.3f * float(i), 2.5f, 3.0f}, {0, 0.3f, 0},
+                                        {0, 1, 0}, 0.8f, 20, 16));
+  Renderer renderer(device(), s, volume, {.msaa = 4, .batch_views = 3});
+  const FrameOutput read = renderer.render(s, views);
+
+  const VkDeviceSize per_view = 20 * 16;
+  gpu::Buffer display(device(), per_view * 4 * views.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      gpu::MemoryUse::readback);
+  gpu::Buffer hdr(device(), per_view * 8 * views.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                  gpu::MemoryUse::readback);
+  std::vector<std::uint32_t> batches;
+  RenderRequest request;
+  request.read_back = false;
+  request.after_batch = [&](VkCommandBuffer cmd, const BatchViews& batch) {
+    batches.push_back(batch.first_view);
+    EXPECT_EQ(batch.width, 20u);
+    EXPECT_EQ(batch.height, 16u);
+    gpu::copy_buffer(cmd, batch.display, display, batch.display_offset(batch.count), 0,
+                     batch.display_offset(batch.first_view));
+    gpu::copy_buffer(cmd, batch.hdr, hdr, batch.hdr_offset(batch.count), 0,
+                     batch.hdr_offset(batch.first_view));
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+  };
+  const FrameOutput kept = renderer.render(s, views, request);
+  EXPECT_EQ(batches, (std::vector<std::uint32_t>{0, 3, 6}));
+  ASSERT_EQ(kept.views.size(), views.size());
+  const auto* pixels = static_cast<const std::uint32_t*>(display.mapped());
+  const auto* halves = static_cast<const std::uint16_t*>(hdr.mapped());
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    EXPECT_EQ(kept.views[v].width, 20);
+    EXPECT_EQ(kept.views[v].height, 16);
+    EXPECT_TRUE(kept.views[v].display.empty());
+    EXPECT_TRUE(kept.views[v].linear.empty());
+    const std::vector<std::uint32_t> copied(pixels + per_view * v, pixels + per_view * (v + 1));
+    EXPECT_EQ(copied, read.views[v].display) << "view " << v;
+    for (std::size_t i = 0; i < per_view; ++i)
+      ASSERT_EQ(sh::half_to_float(halves[(per_view * v + i) * 4]), read.views[v].linear[i].x)
+          << "view " << v << ", pixel " << i;
+  }
+  EXPECT_GT(kept.stats.tonemap_passes, 0u);
+  EXPECT_EQ(kept.stats.readback_ms, 0.0);
 }
 
 TEST_F(RendererTest, StaticShadowMapsAreKept) {
