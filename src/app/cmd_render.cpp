@@ -127,6 +127,7 @@ struct RenderArgs {
 };
 
 void check(const RenderArgs& a) {
+  if (a.scene.empty()) throw std::invalid_argument("scene is required: a .gltf or .glb file");
   check_probe_options(a.probe);
   check_schedule_options(a.schedule);
   sky_radiance(a.lighting);
@@ -300,6 +301,16 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                  int(live->window().drawable_size().width), int(live->window().drawable_size().height),
                  a.live.monitor, calibration ? "lenticular panel image" : "atlas", live->output_width(),
                  live->output_height(), a.live.mailbox ? "mailbox where offered" : "FIFO");
+    const auto& panel = choice.profile ? choice.profile->panel : std::nullopt;
+    if (panel && !calibration)
+      std::fprintf(stderr, "%s: the window shows the quilt (for Looking Glass Bridge or a capture "
+                   "card); --calibration with the device's visual.json shows the %dx%d panel image\n",
+                   a.tag(), panel->width, panel->height);
+    if (panel && calibration &&
+        (calibration->screen_width != panel->width || calibration->screen_height != panel->height))
+      std::fprintf(stderr, "%s: note: the calibration is for a %dx%d panel, the %s profile's is %dx%d\n",
+                   a.tag(), calibration->screen_width, calibration->screen_height,
+                   choice.profile->name.c_str(), panel->width, panel->height);
   }
   const auto& grid = placement.grid;
   std::fprintf(stderr,
@@ -443,6 +454,10 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
 }
 
 int run_render(const RenderArgs& a) {
+  if (a.display.display == "list") {
+    std::printf("%s", display_list().c_str());
+    return 0;
+  }
   check(a);  // before loading: a bad option should not cost a scene load
   const DisplayChoice choice = resolve_display(a.display, a.view);
   // Nor an output that cannot be written.
@@ -499,7 +514,8 @@ int run_render(const RenderArgs& a) {
 
 // The options `ddish render` and `ddish view` share: views, display, frames, output, raster.
 void add_frame_options(CLI::App* cmd, RenderArgs& a) {
-  cmd->add_option("scene", a.scene, "glTF 2.0 scene (.gltf or .glb)")->required()->check(CLI::ExistingFile);
+  // Not required by CLI11: `--display list` needs no scene (check() asks for it otherwise).
+  cmd->add_option("scene", a.scene, "glTF 2.0 scene (.gltf or .glb)")->check(CLI::ExistingFile);
   add_camera_options(*cmd, a.view);
   add_display_options(*cmd, a.display);
   cmd->add_flag("--per-view", a.per_view, "also write every view as DIR/view_NN.png and .exr");

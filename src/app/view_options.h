@@ -38,6 +38,9 @@ struct DisplayArgs {
   std::optional<float> focal_distance;  // --focal-distance M
 };
 
+// `--display list`: one line per profile in displays/ (name, views, quilt, tile, panel).
+std::string display_list();
+
 // Registers --display, --views and --focal-distance.
 void add_display_options(CLI::App& cmd, DisplayArgs& args);
 
