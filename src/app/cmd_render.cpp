@@ -336,6 +336,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   // The views are rebuilt from the posed scene every frame: an animated camera node moves the
   // whole rig.
   std::atomic<bool> live_stop{false};
+  bool overlay = false;
   bool indirect = !a.no_indirect;
   const probes::ProbeVolume dark(placement.grid, a.probe.sh_order);  // what "indirect off" shows
   const ViewSource views = [&](const scene::Scene& posed) {
@@ -357,10 +358,15 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
       local->scheduler.set_mode(next);
       std::fprintf(stderr, "%s: U: schedule %s\n", a.tag(), probes::schedule_mode_name(next));
     }
-    if (sw.overlay) std::fprintf(stderr, "%s: G: the probe-grid overlay is not drawn yet\n", a.tag());
+    if (sw.overlay) {
+      overlay = !overlay;
+      std::fprintf(stderr, "%s: G: probe-grid overlay %s\n", a.tag(), overlay ? "on" : "off");
+    }
     DisplayArgs d = a.display;
     d.focal_distance = live->focal_distance();
-    return make_frame_views(posed, choice, d, a.view, live->camera()).views;
+    std::vector<scene::View> frame_views = make_frame_views(posed, choice, d, a.view, live->camera()).views;
+    set_probe_overlay(*live, overlay ? &volume : nullptr, frame_views);
+    return frame_views;
   };
   std::unique_ptr<ProbeSource> probes;
   if (local) {
@@ -531,7 +537,7 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
                 "show the frames live in a window (SDL2 + Vulkan swapchain): the view, the stereo "
                 "pair, the quilt, or with --calibration the lenticular panel image built on the "
                 "GPU; mouse: left drag orbit, right/middle drag pan, wheel dolly; keys: WASD QE "
-                "fly, I indirect light, U schedule, Esc quit");
+                "fly, I indirect light, U schedule, G probe-grid overlay, Esc quit");
   cmd->add_option("--monitor", a.live.monitor, "with --window: the monitor (SDL display index)")
       ->capture_default_str();
   cmd->add_flag("--fullscreen", a.live.fullscreen,

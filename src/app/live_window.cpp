@@ -7,6 +7,7 @@
 #include "gpu/context.h"
 #include "gpu/presenter.h"
 #include "metrics/color.h"
+#include "probes/probe_volume.h"
 
 namespace ddish::app {
 
@@ -75,6 +76,30 @@ void LiveWindow::pump() {
   switches_.schedule = switches_.schedule != actions.toggle_schedule;
   switches_.overlay = switches_.overlay != actions.toggle_overlay;
   if (actions.resized && presenter_) presenter_->resize(window_.drawable_size());
+}
+
+void LiveWindow::set_overlay(std::span<const display::GpuCompositor::OverlayPoint> points,
+                             std::span<const glm::mat4> view_projections) {
+  compositor_->set_overlay(points, view_projections);
+}
+
+void set_probe_overlay(LiveWindow& live, const probes::ProbeVolume* volume,
+                       std::span<const scene::View> views) {
+  if (!volume) {
+    live.set_overlay({}, {});
+    return;
+  }
+  std::vector<display::GpuCompositor::OverlayPoint> points;
+  points.reserve(volume->probe_count());
+  for (std::uint32_t i = 0; i < volume->probe_count(); ++i) {
+    const probes::ProbeState& s = volume->state(i);
+    // Packed RGBA8, R in the low byte.
+    const std::uint32_t colour = s.unclassified() ? 0xFF00FFFFu : s.active() ? 0xFF00FF00u : 0xFF0000FFu;
+    points.push_back({volume->grid().position(i), colour});
+  }
+  std::vector<glm::mat4> matrices;
+  for (const scene::View& v : views) matrices.push_back(v.projection * v.view);
+  live.set_overlay(points, matrices);
 }
 
 LiveSwitches LiveWindow::take_switches() { return std::exchange(switches_, LiveSwitches{}); }

@@ -13,10 +13,12 @@
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "app/probe_source.h"
+#include "display/gpu_compositor.h"
 #include "display/lenticular.h"
 #include "display/quilt_layout.h"
 #include "raster/renderer.h"
@@ -30,9 +32,6 @@ class Context;
 class Presenter;
 }  // namespace ddish::gpu
 
-namespace ddish::display {
-class GpuCompositor;
-}
 
 namespace ddish::app {
 
@@ -84,6 +83,9 @@ class LiveWindow {
   void hold(const std::atomic<bool>& stop);
 
   LiveSwitches take_switches();
+  // The probe-grid overlay for the next presents (empty: none).
+  void set_overlay(std::span<const display::GpuCompositor::OverlayPoint> points,
+                   std::span<const glm::mat4> view_projections);
   bool quit() const { return quit_; }
   void set_status(const std::string& line) { window_.set_title(line); }
   const window::Window& window() const { return window_; }
@@ -127,6 +129,11 @@ class SwitchableProbes final : public ProbeSource {
   ProbeSource& inner_;
   const bool& on_;
 };
+
+// The probe-grid overlay of the frame's views: every probe of `volume` as a dot, green when
+// active, yellow while not yet classified, red when inactive (inside geometry); null: none.
+void set_probe_overlay(LiveWindow& live, const probes::ProbeVolume* volume,
+                       std::span<const scene::View> views);
 
 // Detaches the window's GPU half when it goes: declare it after the gpu::Context.
 struct LiveAttachment {

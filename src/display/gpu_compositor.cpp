@@ -1,5 +1,6 @@
 #include "display/gpu_compositor.h"
 
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,6 +28,10 @@ struct AtlasParams {
   std::uint32_t width, height, tile_width, tile_height, columns, rows, view_count;
 };
 
+struct OverlayParams {
+  std::uint32_t point_count, view_count, width, height;
+};
+
 struct LenticularParams {
   std::uint32_t width, height, tile_width, tile_height;
 };
@@ -49,7 +54,7 @@ gpu::Buffer device_buffer(const gpu::Device& device, gpu::CommandRunner& runner,
 GpuCompositor::GpuCompositor(const gpu::Device& device, const QuiltLayout& layout, int views,
                              const std::optional<LenticularMapping>& mapping,
                              const Srgb8Tables& tables)
-    : layout_(layout), views_(views) {
+    : layout_(layout), views_(views), device_(&device) {
   layout.validate();
   if (views < 1 || views > layout.cells())
     throw std::invalid_argument(std::to_string(views) + " views do not fit a " +
@@ -122,10 +127,54 @@ void GpuCompositor::record_gather(VkCommandBuffer cmd, const gpu::Buffer& displa
   gpu::copy_buffer(cmd, display, gathered_, view_bytes * count, 0, view_bytes * first_view);
 }
 
+void GpuCompositor::set_overlay(std::span<const OverlayPoint> points,
+                                std::span<const glm::mat4> view_projections) {
+  overlay_points_ = 0;
+  if (points.empty()) return;
+  if (view_projections.size() != std::size_t(views_))
+    throw std::invalid_argument("overlay: " + std::to_string(view_projections.size()) +
+                                " matrices for " + std::to_string(views_) + " views");
+  std::vector<glm::vec4> packed;
+  packed.reserve(points.size());
+  for (const OverlayPoint& p : points) {
+    float colour = 0.0f;
+    std::memcpy(&colour, &p.colour, sizeof colour);
+    packed.emplace_back(p.position, colour);
+  }
+  const VkDeviceSize point_bytes = packed.size() * sizeof(glm::vec4);
+  const VkDeviceSize matrix_bytes = view_projections.size_bytes();
+  const bool rebind = !overlay_ || overlay_positions_.size() < point_bytes ||
+                      overlay_matrices_.size() < matrix_bytes;
+  if (overlay_positions_.size() < point_bytes)
+    overlay_positions_ = gpu::Buffer(*device_, point_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                     gpu::MemoryUse::upload);
+  if (overlay_matrices_.size() < matrix_bytes)
+    overlay_matrices_ = gpu::Buffer(*device_, matrix_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                    gpu::MemoryUse::upload);
+  overlay_positions_.write(packed.data(), point_bytes);
+  overlay_matrices_.write(view_projections.data(), matrix_bytes);
+  if (!overlay_)
+    overlay_.emplace(*device_, gpu::ShaderModule::load(*device_, "overlay_points.comp"),
+                     gpu::ComputePipelineDesc{.storage_buffers = 3,
+                                              .push_constant_bytes = sizeof(OverlayParams)});
+  if (rebind) overlay_->bind_buffers({&gathered_, &overlay_positions_, &overlay_matrices_});
+  overlay_points_ = std::uint32_t(points.size());
+}
+
 void GpuCompositor::record_compose(VkCommandBuffer cmd) const {
   // The gathers may be in earlier submissions: a barrier orders them on the queue all the same.
   gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  if (overlay_points_ > 0) {
+    overlay_->bind(cmd);
+    overlay_->push(cmd, OverlayParams{overlay_points_, std::uint32_t(views_),
+                                      std::uint32_t(layout_.tile_width),
+                                      std::uint32_t(layout_.tile_height)});
+    overlay_->dispatch(cmd, gpu::group_count(overlay_points_ * std::uint32_t(views_), 64));
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+  }
   // And the last frame's transfer reads of the output before this frame's writes.
   gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);

@@ -19,6 +19,7 @@
 #include <optional>
 #include <span>
 
+#include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
 
 #include "display/lenticular.h"
@@ -54,7 +55,18 @@ class GpuCompositor {
   void record_gather(VkCommandBuffer cmd, const gpu::Buffer& display, std::uint32_t first_view,
                      std::uint32_t count, std::uint32_t width, std::uint32_t height) const;
 
-  // Records the compose pass, with the barriers from the gathers' transfer writes before it
+  // A point to mark in every view (the probe-grid overlay): world position and the packed RGBA8
+  // colour of its 3 × 3 dot.
+  struct OverlayPoint {
+    glm::vec3 position;
+    std::uint32_t colour;
+  };
+  // Sets the overlay for the next compose passes: the points and each view's view-projection
+  // matrix (Vulkan convention). Empty points: no overlay. The GPU must not be running a compose
+  // pass of this compositor meanwhile (the window composes synchronously).
+  void set_overlay(std::span<const OverlayPoint> points, std::span<const glm::mat4> view_projections);
+
+  // Records the compose pass (after the overlay, if set), with the barriers from the gathers' transfer writes before it
   // and from its writes to transfer reads of output() after it.
   void record_compose(VkCommandBuffer cmd) const;
 
@@ -81,6 +93,11 @@ class GpuCompositor {
   gpu::Buffer output_;
   std::optional<LenticularTables> lenticular_;
   std::optional<gpu::ComputePipeline> pipeline_;
+  const gpu::Device* device_ = nullptr;
+  std::uint32_t overlay_points_ = 0;
+  gpu::Buffer overlay_positions_;  // host-visible, grown as needed
+  gpu::Buffer overlay_matrices_;
+  std::optional<gpu::ComputePipeline> overlay_;
 };
 
 }  // namespace ddish::display

@@ -190,6 +190,49 @@ TEST_F(GpuCompositorTest, AtlasEqualsTheQuiltTheWriterComposes) {
   }
 }
 
+TEST_F(GpuCompositorTest, OverlayMarksEachPointInEveryViewWithItsOwnProjection) {
+  // Two views of 16 x 12, identity matrices but the second shifted by a quarter of the width in
+  // NDC (0.5): a point at the origin lands at pixel (8, 6) in view 0 and (12, 6) in view 1.
+  const QuiltLayout layout = layout_from_tiles(2, 1, 16, 12);
+  const std::vector<float> decoded = decoded_table();
+  GpuCompositor comp(device(), layout, 2, std::nullopt,
+                     Srgb8Tables{std::span<const float, 256>(decoded.data(), 256), metrics::srgb8_midpoints()});
+  glm::mat4 shifted(1.0f);
+  shifted[3][0] = 0.5f;
+  const std::vector<glm::mat4> matrices{glm::mat4(1.0f), shifted};
+  const std::vector<GpuCompositor::OverlayPoint> points{{glm::vec3(0.0f, 0.0f, 0.5f), 0xFF00FF00u},
+                                                        {glm::vec3(5.0f, 0.0f, 0.5f), 0xFF0000FFu}};
+  comp.set_overlay(points, matrices);  // the second point is off screen in both views
+  const std::vector<std::uint32_t> px = make_views(2, 16, 12, false);
+  gpu::Buffer input(device(), px.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUse::upload);
+  input.write(px.data(), px.size() * 4);
+  gpu::CommandRunner runner(device());
+  runner.run([&](VkCommandBuffer cmd) {
+    comp.record_gather(cmd, input, 0, 2, 16, 12);
+    comp.record_compose(cmd);
+  });
+  const auto out = gpu::download<std::uint32_t>(device(), runner, comp.output(), 32 * 12);
+  int marked = 0;
+  for (int y = 0; y < 12; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const int view = x / 16, tx = x % 16;
+      const int cx = view == 0 ? 8 : 12;
+      const bool dot = std::abs(tx - cx) <= 1 && std::abs(y - 6) <= 1;
+      const std::uint32_t want = dot ? 0xFF00FF00u : px[(std::size_t(view) * 12 + std::size_t(y)) * 16 + std::size_t(tx)];
+      EXPECT_EQ(out[std::size_t(y) * 32 + std::size_t(x)], want) << x << "," << y;
+      marked += dot;
+    }
+  EXPECT_EQ(marked, 18);
+  comp.set_overlay({}, {});  // off again: the views as they are
+  runner.run([&](VkCommandBuffer cmd) {
+    comp.record_gather(cmd, input, 0, 2, 16, 12);
+    comp.record_compose(cmd);
+  });
+  const auto plain = gpu::download<std::uint32_t>(device(), runner, comp.output(), 32 * 12);
+  EXPECT_EQ(plain[6 * 32 + 8], px[6 * 16 + 8]);
+  EXPECT_THROW(comp.set_overlay(points, std::span<const glm::mat4>(matrices.data(), 1)), std::invalid_argument);
+}
+
 TEST_F(GpuCompositorTest, BadGatherIsRefused) {
   const std::vector<float> decoded = decoded_table();
   GpuCompositor comp(device(), layout_from_tiles(2, 1, 8, 8), 2, std::nullopt,
