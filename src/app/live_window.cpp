@@ -3,6 +3,7 @@
 #include <thread>
 #include <utility>
 
+#include "app/interrupt.h"
 #include "display/gpu_compositor.h"
 #include "gpu/context.h"
 #include "gpu/presenter.h"
@@ -67,7 +68,7 @@ void LiveWindow::pump() {
   SDL_Event ev;
   while (SDL_PollEvent(&ev)) input_.handle(ev, camera_, height, actions);
   // Minimised: nothing to show, so the loop waits here (no frames drawn) until restored.
-  while (input_.minimised() && !actions.quit) {
+  while (input_.minimised() && !actions.quit && !stop_flag().load()) {
     if (SDL_WaitEventTimeout(&ev, 100)) input_.handle(ev, camera_, height, actions);
   }
   input_.advance(camera_, seconds);
