@@ -4,7 +4,9 @@
 // the window's image is the renderer's display bytes (atlas) or the GPU interleave (lenticular,
 // equal bit for bit to the CPU's: test_display's GpuCompositorTest), copied 1:1 (nearest blit)
 // into a UNORM swapchain, and Xvfb's 24-bit visual keeps 8 bits a channel. Single view, stereo
-// pair and lenticular panel image. Without a display server --window is one line and exit 2.
+// pair and lenticular panel image (a Portrait-like and a 16-inch-like calibration on small panels,
+// the latter with flipImageX, flipImageY and flipSubp). Without a display server --window is one
+// line and exit 2.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,6 +14,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <set>
 #include <string>
 #include <thread>
 
@@ -114,6 +117,11 @@ class WindowCli : public cli::TempDirTest {
       largest = std::max(largest, d);
     }
     EXPECT_EQ(differing, 0) << "largest difference " << largest << " of " << a.rgb.size() << " bytes";
+    // And the frame is a picture, not a blank window equal to a blank file.
+    std::set<std::uint32_t> colours;
+    for (std::size_t i = 0; i + 2 < b.rgb.size(); i += 3)
+      colours.insert(std::uint32_t(b.rgb[i]) | std::uint32_t(b.rgb[i + 1]) << 8 | std::uint32_t(b.rgb[i + 2]) << 16);
+    EXPECT_GT(colours.size(), 100u);
   }
 
   std::string err_;
@@ -167,6 +175,27 @@ TEST_F(WindowCli, LenticularScreenshotEqualsTheCpuPanelFileWithoutValidationErro
   ASSERT_EQ(code, 0) << err_;
   EXPECT_NE(err_.find("lenticular panel image 120x160"), std::string::npos) << err_;
   EXPECT_NE(err_.find("validation: 0 errors"), std::string::npos) << err_;
+  expect_equal(dir_ / "shot.xwd", dir_ / "out" / "cornell_box_lenticular.png");
+}
+
+TEST_F(WindowCli, SixteenInchLenticularWithFlipsScreenshotEqualsTheCpuPanelFile) {
+  // The 16-inch's 45 views and its lenticules across a 160 × 90 panel (its DPI shrunk with the
+  // screen: 3840 / 283 inches wide), mounted mirrored with BGR subpixels.
+  const fs::path cal = dir_ / "visual.json";
+  std::ofstream(cal) << R"({"pitch": {"value": 47.58}, "slope": {"value": -5.49},
+    "center": {"value": 0.09}, "DPI": {"value": 11.7917}, "screenW": {"value": 160.0},
+    "screenH": {"value": 90.0}, "invView": {"value": 0.0}, "flipImageX": {"value": 1.0},
+    "flipImageY": {"value": 1.0}, "flipSubp": {"value": 1.0}})";
+  Xvfb x(160, 90);
+  ASSERT_TRUE(x.running()) << "Xvfb did not start";
+  const int code = run_and_shoot(x.display(),
+                                 "render " + cli::cornell() +
+                                     " --display looking-glass-16 --width 41 --height 23"
+                                     " --calibration " + cli::quote(cal.string()) + " --out " +
+                                     path("out") + kFast,
+                                 dir_ / "shot.xwd");
+  ASSERT_EQ(code, 0) << err_;
+  EXPECT_NE(err_.find("lenticular panel image 160x90"), std::string::npos) << err_;
   expect_equal(dir_ / "shot.xwd", dir_ / "out" / "cornell_box_lenticular.png");
 }
 
