@@ -43,14 +43,16 @@ class Runner:
                 return p
         return None
 
-    def run(self, args, what, timeout=1800):
+    def run(self, args, what, timeout=1800, env=None):
         args = [str(a) for a in args]
-        shown = " ".join(self.show(a) for a in args)
+        shown = " ".join([f"{k}={self.show(str(v))}" for k, v in (env or {}).items()] +
+                         [self.show(a) for a in args])
         self.commands.append(shown)
         t0 = time.monotonic()
         try:
             proc = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                  timeout=timeout, cwd=ROOT)
+                                  timeout=timeout, cwd=ROOT,
+                                  env=dict(os.environ, **{k: str(v) for k, v in env.items()}) if env else None)
         except subprocess.TimeoutExpired:
             raise StepFailed(f"{what}: timed out after {timeout} s: {shown}")
         if proc.returncode != 0:

@@ -25,6 +25,7 @@ from scaling import section_scaling
 from error_time import section_error
 from dynamic import section_dynamic
 from schedule import section_schedule
+from service import section_service
 
 
 def machine(runner):
@@ -68,8 +69,8 @@ def main():
     ap = argparse.ArgumentParser(description="regenerate the results report")
     ap.add_argument("--quick", action="store_true", help="tiny sizes, Cornell box only (smoke test)")
     ap.add_argument("--out", default=str(ROOT / "docs"), help="write OUT/RESULTS.md and OUT/results/")
-    ap.add_argument("--sections", default="scaling,error,dynamic,schedule",
-                    help="comma-separated subset of scaling,error,dynamic,schedule (default: all)")
+    ap.add_argument("--sections", default="scaling,error,dynamic,schedule,service",
+                    help="comma-separated subset of scaling,error,dynamic,schedule,service (default: all)")
     a = ap.parse_args()
     cfg = QUICK if a.quick else FULL
 
@@ -104,6 +105,7 @@ def main():
          lambda: section_error(runner, cfg, scenes, cache, results_dir, body)),
         ("dynamic light", "dynamic", lambda: section_dynamic(runner, cfg, scenes, cache, results_dir, body)),
         ("scheduling", "schedule", lambda: section_schedule(runner, cfg, scenes, cache, results_dir, body)),
+        ("probe service", "service", lambda: section_service(runner, cfg, results_dir, body)),
     ]
     chosen = set(a.sections.split(","))
     unknown = chosen - {key for _, key, _ in sections}
@@ -188,6 +190,18 @@ def headline(outcome):
         if sch.get("ray_ratio_note"):
             lines.append("- Scheduling: the visibility schedule did not reach the uniform run's error "
                          "within its frames.")
+    svc = outcome.get("probe service")
+    if svc:
+        enc = {r["encoding"] + (" + zstd" if r["zstd"] == "yes" else ""): r for r in svc["service_encodings.csv"]}
+        if "compact" in enc:
+            lines.append(f"- Probe stream: {enc['compact']['bytes_per_probe']} B per L2 probe (compact "
+                         f"encoding), PSNR {enc['compact']['psnr_vs_in_process_db']} dB against the "
+                         "in-process render of the same probes.")
+        rec = svc["service_reconnect.csv"]
+        if rec:
+            worst = max(float(r["max_s"]) for r in rec)
+            lines.append(f"- Probe service faults: {len(rec)} clients × {rec[0]['reconnections']} server "
+                         f"restarts, every client reconnected within {worst:.2f} s of the server's return.")
     if len(lines) == 1:
         lines.append("- none: no section produced figures.")
     lines.append("")

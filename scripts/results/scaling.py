@@ -6,6 +6,7 @@ import shutil
 import time
 
 from common import SCENE_NAMES, StepFailed, fmt, frame_stats, log, plot, render, write_csv
+from drivers import driver_rows
 
 
 def section_scaling(runner, cfg, scenes, results_dir, report):
@@ -172,4 +173,6 @@ def section_scaling(runner, cfg, scenes, results_dir, report):
     if trace_rows:
         write_csv(results_dir / "trace_floor.csv", list(trace_rows[0].keys()), trace_rows)
         report.append("Tracing floor per scene: [results/trace_floor.csv](results/trace_floor.csv).\n")
+    if cfg["mode"] == "full":
+        driver_rows(runner, cfg, scenes, results_dir, report)
     return rows_all, trace_rows
