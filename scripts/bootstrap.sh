@@ -21,6 +21,9 @@ PACKAGES=(
   libgtest-dev libgmock-dev gnuplot-nox python3
   # fuzzing (scripts/fuzz.sh, every tests/fuzz target): clang 14 and its libFuzzer, ASan and UBSan runtimes
   clang-14 libclang-rt-14-dev
+  # the live window (ddish render --window, src/window): SDL2 with its Vulkan surface; the window
+  # tests run under a private Xvfb server and screenshot it with xwd (x11-apps)
+  libsdl2-dev xvfb x11-apps
   # silences a broken-target warning in Debian's Imath CMake files (pulled in by OpenImageIO)
   python3-imath
 )
@@ -63,14 +66,22 @@ if [ $need_mesa -eq 1 ] && [ ! -f "$BACKPORTS_LIST" ] && ! grep -rqs 'bookworm-b
 fi
 
 $SUDO apt-get update -q
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "bootstrap: installing ${#missing[@]} package(s): ${missing[*]}"
-  $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+# libsdl2-dev pulls libdrm-dev and libgbm-dev, whose versions must equal the installed libdrm2 and
+# libgbm1: with Mesa from bookworm-backports (now or about to be) they come from there too.
+mesa_dev=()
+if [ "${DDISH_STOCK_MESA:-0}" != 1 ] && { [ $need_mesa -eq 1 ] || dpkg-query -W -f='${Version}' libgbm1 2>/dev/null | grep -q bpo; }; then
+  for p in libdrm-dev libgbm-dev; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || mesa_dev+=("$p/bookworm-backports")
+  done
 fi
 if [ $need_mesa -eq 1 ]; then
   # apt pulls the matching libdrm, mesa-libgallium and every Mesa package already installed
   # (their versions must equal the driver's).
   echo "bootstrap: installing Mesa $MESA_MIN_MAJOR lavapipe from bookworm-backports"
   $SUDO apt-get install -y -q --no-install-recommends -t bookworm-backports mesa-vulkan-drivers
+fi
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "bootstrap: installing ${#missing[@]} package(s): ${missing[*]}"
+  $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}" ${mesa_dev[@]+"${mesa_dev[@]}"}
 fi
 echo "bootstrap: mesa-vulkan-drivers $(dpkg-query -W -f='${Version}' mesa-vulkan-drivers)"

@@ -36,6 +36,8 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <atomic>
+#include <limits>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -54,6 +56,7 @@
 #include "app/frame_loop.h"
 #include "app/frame_outputs.h"
 #include "app/interrupt.h"
+#include "app/live_window.h"
 #include "app/lighting_options.h"
 #include "app/output_queue.h"
 #include "app/plan_report.h"
@@ -66,6 +69,7 @@
 #include "app/view_options.h"
 #include "app/warmup_options.h"
 #include "display/calibration.h"
+#include "display/lenticular.h"
 #include "gpu/context.h"
 #include "io/atomic_file.h"
 #include "net/curve_keys.h"
@@ -98,6 +102,8 @@ struct RenderArgs {
   LightingArgs lighting;
   ScheduleArgs schedule;
   int frames = 1;
+  bool frames_given = false;  // --window without --frames runs until closed, writing no files
+  LiveArgs live;
   bool every = false;
   bool loop = false;
   double fps = 30.0;
@@ -124,6 +130,7 @@ struct RenderArgs {
 };
 
 void check(const RenderArgs& a) {
+  if (a.scene.empty()) throw std::invalid_argument("scene is required: a .gltf or .glb file");
   check_probe_options(a.probe);
   check_schedule_options(a.schedule);
   check_warmup_options(a.warmup);
@@ -131,6 +138,14 @@ void check(const RenderArgs& a) {
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
   if (a.frames < 1) throw std::invalid_argument("--frames must be at least 1");
+  if (!a.live.window && (a.live.monitor != 0 || a.live.fullscreen || a.live.mailbox || a.live.hold))
+    throw std::invalid_argument("--monitor, --fullscreen, --mailbox and --hold go with --window");
+  if (a.live.hold && !a.frames_given)
+    throw std::invalid_argument("--hold keeps the last of --frames N on screen: give --frames");
+  if (a.live.monitor < 0) throw std::invalid_argument("--monitor must be 0 or more");
+  if (a.live.window && !window::display_server_named())
+    throw std::invalid_argument("--window needs a display server, and neither DISPLAY nor "
+                                "WAYLAND_DISPLAY is set; without --window ddish renders to files");
   if (a.wait_ms < 0 || a.frame_wait_ms < 0 || a.stale_ms < 1)
     throw std::invalid_argument("--wait-ms and --frame-wait-ms must be >= 0, --stale-ms >= 1");
   if (!a.connect.empty()) net::parse_endpoint(a.connect);  // throws with the reason
@@ -200,6 +215,7 @@ void check_file_size_limit(const gpu::DeviceInfo& device) {
 
 struct GpuRun {
   FrameLoopResult result;
+  bool window_closed = false;  // the live window's close (or Esc) ended the run
   bool validation = false;  // the validation layer was on
   std::shared_ptr<const gpu::ValidationLog> log;
 };
@@ -218,7 +234,8 @@ StreamArgs stream_args(const RenderArgs& a) {
 // and instance are destroyed and what the layer says about them (leaks) is in the log.
 GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& placement,
                      const DisplayChoice& choice, const display::ViewSet& first,
-                     const FrameWriter& writer, std::uint64_t identity) {
+                     const FrameWriter& writer, std::uint64_t identity,
+                     const std::optional<display::Calibration>& calibration) {
   const bool remote = !a.connect.empty();
   std::unique_ptr<InProcessParts> local;
   if (!remote)
@@ -228,7 +245,22 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                                       : probes::ProbeVolume(placement.grid, a.probe.sh_order);
 
   GpuRun run;
-  gpu::Context gpu({.device_index = a.device});
+  // The live window opens before the GPU context: its surface extensions go into the instance.
+  std::unique_ptr<LiveWindow> live;
+  if (a.live.window) {
+    const scene::Camera start = resolve_camera(s, a.view);
+    const float focal = first.kind == display::ViewSetKind::Single
+                            ? display::focal_distance_to_scene_center(s, start.eye, start.forward)
+                            : a.display.focal_distance.value_or(display::focal_distance_to_scene_center(
+                                  s, start.eye, start.forward));
+    live = std::make_unique<LiveWindow>(
+        a.live, "ddish " + first.name, calibration ? calibration->screen_width : first.layout.width,
+        calibration ? calibration->screen_height : first.layout.height, start, focal);
+  }
+  gpu::Context gpu({.device_index = a.device,
+                    .instance_extensions = live ? live->instance_extensions() : std::vector<std::string>{},
+                    .device_extensions = live ? LiveWindow::device_extensions() : std::vector<std::string>{}});
+  LiveAttachment attachment;  // the window's GPU half goes before the context
   check_file_size_limit(gpu.device().info());
   run.validation = gpu.instance().validation_enabled();
   run.log = gpu.instance().shared_validation();
@@ -241,6 +273,25 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   ro.exposure = exposure_scale(a.lighting);
   ro.probes = !a.no_indirect;
   raster::Renderer renderer(gpu.device(), s, volume, ro);
+  if (live) {
+    live->attach(gpu, first.layout, int(first.size()),
+                 calibration ? std::optional(display::lenticular_mapping(*calibration)) : std::nullopt);
+    attachment.live = live.get();
+    std::fprintf(stderr, "%s: window %dx%d on monitor %d: %s %dx%d, %s\n", a.tag(),
+                 int(live->window().drawable_size().width), int(live->window().drawable_size().height),
+                 a.live.monitor, calibration ? "lenticular panel image" : "atlas", live->output_width(),
+                 live->output_height(), a.live.mailbox ? "mailbox where offered" : "FIFO");
+    const auto& panel = choice.profile ? choice.profile->panel : std::nullopt;
+    if (panel && !calibration)
+      std::fprintf(stderr, "%s: the window shows the quilt (for Looking Glass Bridge or a capture "
+                   "card); --calibration with the device's visual.json shows the %dx%d panel image\n",
+                   a.tag(), panel->width, panel->height);
+    if (panel && calibration &&
+        (calibration->screen_width != panel->width || calibration->screen_height != panel->height))
+      std::fprintf(stderr, "%s: note: the calibration is for a %dx%d panel, the %s profile's is %dx%d\n",
+                   a.tag(), calibration->screen_width, calibration->screen_height,
+                   choice.profile->name.c_str(), panel->width, panel->height);
+  }
   const auto& grid = placement.grid;
   std::fprintf(stderr,
                "%s: %s, %zu triangles on %s; display %s: %zu views of %dx%d (%dx%d atlas %dx%d), "
@@ -264,18 +315,54 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
 
   // The views are rebuilt from the posed scene every frame: an animated camera node moves the
   // whole rig.
+  std::atomic<bool> live_stop{false};
+  bool overlay = false;
+  bool indirect = !a.no_indirect;
+  const probes::ProbeVolume dark(placement.grid, a.probe.sh_order);  // what "indirect off" shows
   const ViewSource views = [&](const scene::Scene& posed) {
-    return make_frame_views(posed, choice, a.display, a.view).views;
+    if (!live) return make_frame_views(posed, choice, a.display, a.view).views;
+    live->pump();
+    if (live->quit() || stop_flag().load()) live_stop = true;
+    const LiveSwitches sw = live->take_switches();
+    if (sw.indirect && a.no_indirect) {
+      std::fprintf(stderr, "%s: I: the run has --no-indirect, its shaders draw no probes\n", a.tag());
+    } else if (sw.indirect) {
+      indirect = !indirect;  // the renderer is idle between frames: swap what it draws with
+      renderer.upload_probes(indirect ? volume : dark);
+      std::fprintf(stderr, "%s: I: indirect light %s\n", a.tag(), indirect ? "on" : "off");
+    }
+    if (sw.schedule && local) {
+      const auto next = local->scheduler.options().mode == probes::ScheduleMode::uniform
+                            ? probes::ScheduleMode::visibility
+                            : probes::ScheduleMode::uniform;
+      local->scheduler.set_mode(next);
+      std::fprintf(stderr, "%s: U: schedule %s\n", a.tag(), probes::schedule_mode_name(next));
+    }
+    if (sw.overlay) {
+      overlay = !overlay;
+      std::fprintf(stderr, "%s: G: probe-grid overlay %s\n", a.tag(), overlay ? "on" : "off");
+    }
+    DisplayArgs d = a.display;
+    d.focal_distance = live->focal_distance();
+    std::vector<scene::View> frame_views = make_frame_views(posed, choice, d, a.view, live->camera()).views;
+    set_probe_overlay(*live, overlay ? &volume : nullptr, frame_views);
+    return frame_views;
   };
   const std::unique_ptr<ProbeSource> probes =
       make_probe_source(local.get(), a.probe, a.schedule, stream_args(a), volume, identity, a.tag());
-  FrameLoop loop(s, *probes, renderer, views);
+  // Indirect light switched off in the window: no probe updates either (as --no-indirect).
+  SwitchableProbes switchable(*probes, indirect);
+  FrameLoop loop(s, switchable, renderer, views);
   FrameLoopOptions options;
-  options.frames = a.frames;
+  options.frames = live && !a.frames_given ? std::numeric_limits<int>::max() : a.frames;
+  const bool files = !live || a.frames_given;
   options.time = a.time;
   options.fps = a.fps;
-  options.every = a.every;
-  options.stop = &stop_flag();  // Ctrl-C: this frame is the last one, written whole
+  options.every = a.every || live;  // the window is shown every frame; files as asked
+  // Ctrl-C: this frame is the last one, written whole; the window's close does the same.
+  options.stop = live ? &live_stop : &stop_flag();
+  if (live) options.render_request = live->request(files);
+  double present_ms = 0.0;
   options.loop_period = a.loop ? s.animation_duration() : 0.0;
   options.warmup = a.warmup;
   // Without indirect light nothing reads the probes: tracing them would only cost time (and
@@ -287,6 +374,10 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   // last frame's "output_drain" the wait for the writer to finish after the loop.
   OutputQueue queue(writer);
   const FrameSink sink = [&](int k, raster::FrameOutput& frame) {
+    if (live) {
+      present_ms = live->present();
+      if (!files || !(a.every || k + 1 == options.frames || live_stop.load())) return std::vector<fs::path>{};
+    }
     const std::string tag = a.every ? fmt::format("{:04d}", k) : "";
     queue.push(std::move(frame.views), fmt::format("frame_{:04d}", k), tag);
     return std::vector<fs::path>{};
@@ -298,7 +389,17 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
       std::fprintf(stderr, "view: no probe server at %s after %d ms: rendering with %s until it answers\n",
                    a.connect.c_str(), a.wait_ms,
                    a.baked.empty() ? "direct light only" : ("the baked probes of " + a.baked).c_str());
-    print_progress(r, a.frames);
+    print_progress(r, options.frames);
+    if (live) {
+      const metrics::FrameTimings& t = *r.timings;
+      live->set_status(fmt::format(
+          "ddish {} · {} views · probes {:.1f} ms · raster {:.1f} ms · present {:.1f} ms · "
+          "oldest probe {} frames · indirect {} · {}",
+          first.name, r.counts.views,
+          t.stage_ms("tracer_update") + t.stage_ms("probe_update") + t.stage_ms("upload"),
+          raster_ms(t), present_ms, r.counts.oldest_probe_age, indirect ? "on" : "off",
+          local ? probes::schedule_mode_name(local->scheduler.options().mode) : "remote probes"));
+    }
   });
   const auto drain_start = std::chrono::steady_clock::now();
   run.result.written = queue.finish();
@@ -306,10 +407,26 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     run.result.timings.last().add(
         "output_drain",
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - drain_start).count());
+  if (live) {
+    run.window_closed = live->quit();
+    if (a.live.hold && !live->quit() && !stop_flag().load()) {
+      for (const fs::path& p : run.result.written) std::printf("wrote %s\n", p.string().c_str());
+      std::fflush(stdout);
+      run.result.written.clear();
+      std::fprintf(stderr, "%s: holding frame %zu in the window until it is closed\n", a.tag(),
+                   run.result.counts.size());
+      live->hold(stop_flag());
+      run.window_closed = live->quit();
+    }
+  }
   return run;
 }
 
 int run_render(const RenderArgs& a) {
+  if (a.display.display == "list") {
+    std::printf("%s", display_list().c_str());
+    return 0;
+  }
   check(a);  // before loading: a bad option should not cost a scene load
   const DisplayChoice choice = resolve_display(a.display, a.view);
   // Nor an output that cannot be written.
@@ -334,9 +451,12 @@ int run_render(const RenderArgs& a) {
   std::fprintf(stderr, "%s: %s\n", a.tag(), environment.c_str());
   allow_graceful_stop();
   const GpuRun run = render_frames(a, s, placement, choice, first, writer,
-                                   scene_identity(geometry, placement.grid, a.probe.sh_order));
+                                   scene_identity(geometry, placement.grid, a.probe.sh_order),
+                                   calibration);
   const std::size_t done = run.result.counts.size();
-  if (run.result.stopped)
+  if (run.window_closed && stop_signal() == 0)
+    std::fprintf(stderr, "%s: window closed after frame %zu\n", a.tag(), done);
+  else if (run.result.stopped)
     std::fprintf(stderr, "%s: stopped by %s after frame %zu of %d (t=%.3f s): its images are "
                  "written, %s\n",
                  a.tag(), stop_signal() == SIGTERM ? "SIGTERM" : "SIGINT", done, a.frames,
@@ -358,19 +478,38 @@ int run_render(const RenderArgs& a) {
       return 1;
     }
   }
-  return run.result.stopped ? interrupted_exit_code(stop_signal()) : 0;
+  return run.result.stopped && stop_signal() != 0 ? interrupted_exit_code(stop_signal()) : 0;
 }
 
 // The options `ddish render` and `ddish view` share: views, display, frames, output, raster.
 void add_frame_options(CLI::App* cmd, RenderArgs& a) {
-  cmd->add_option("scene", a.scene, "glTF 2.0 scene (.gltf or .glb)")->required()->check(CLI::ExistingFile);
+  // Not required by CLI11: `--display list` needs no scene (check() asks for it otherwise).
+  cmd->add_option("scene", a.scene, "glTF 2.0 scene (.gltf or .glb)")->check(CLI::ExistingFile);
   add_camera_options(*cmd, a.view);
   add_display_options(*cmd, a.display);
   cmd->add_flag("--per-view", a.per_view, "also write every view as DIR/view_NN.png and .exr");
   cmd->add_option("--calibration", a.calibration,
                   "Looking Glass calibration (visual.json): also write the lenticular panel image")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--frames", a.frames, "frames to render")->capture_default_str();
+  cmd->add_option("--frames", a.frames,
+                  "frames to render (with --window: none given runs until the window is closed "
+                  "and writes no files)")
+      ->capture_default_str()
+      ->each([&a](const std::string&) { a.frames_given = true; });
+  cmd->add_flag("--window", a.live.window,
+                "show the frames live in a window (SDL2 + Vulkan swapchain): the view, the stereo "
+                "pair, the quilt, or with --calibration the lenticular panel image built on the "
+                "GPU; mouse: left drag orbit, right/middle drag pan, wheel dolly; keys: WASD QE "
+                "fly, I indirect light, U schedule, G probe-grid overlay, Esc quit");
+  cmd->add_option("--monitor", a.live.monitor, "with --window: the monitor (SDL display index)")
+      ->capture_default_str();
+  cmd->add_flag("--fullscreen", a.live.fullscreen,
+                "with --window: borderless fullscreen at the monitor's own resolution (the panel's "
+                "native resolution on a Looking Glass)");
+  cmd->add_flag("--mailbox", a.live.mailbox, "with --window: MAILBOX presentation where offered (else FIFO)");
+  cmd->add_flag("--hold", a.live.hold,
+                "with --window and --frames: after the last frame keep showing it until the window "
+                "is closed (Esc) or the process is signalled");
   cmd->add_flag("--every", a.every, "write every frame, not only the last");
   cmd->add_flag("--loop", a.loop,
                 "play the animations again and again: the scene time wraps at the longest "

@@ -17,7 +17,8 @@ void add_display_options(CLI::App& cmd, DisplayArgs& args) {
   DisplayArgs* a = &args;
   cmd.add_option("--display", args.display,
                  "single (default), stereo (the stereo-hmd profile), or a display profile: a name "
-                 "in displays/ (e.g. looking-glass-portrait) or a .json path");
+                 "in displays/ (e.g. looking-glass-portrait) or a .json path; `--display list` "
+                 "lists the profiles");
   cmd.add_option_function<int>(
       "--views", [a](int n) { a->views = n; },
       "number of views: any N for a light-field profile (quilt layout recomputed unless N is "
@@ -25,6 +26,23 @@ void add_display_options(CLI::App& cmd, DisplayArgs& args) {
   cmd.add_option_function<float>(
       "--focal-distance", [a](float m) { a->focal_distance = m; },
       "distance from the camera to the zero-parallax plane (default: to the scene's centre)");
+}
+
+std::string display_list() {
+  std::string text;
+  for (const std::string& name : display::profile_names()) {
+    try {
+      const display::Profile p = display::load_profile(name);
+      text += fmt::format("{:28} {:3} views  quilt {}x{} of {}x{}, tiles {}x{}", p.name, p.views,
+                          p.layout.columns, p.layout.rows, p.layout.width, p.layout.height,
+                          p.layout.tile_width, p.layout.tile_height);
+      if (p.panel) text += fmt::format(", panel {}x{}", p.panel->width, p.panel->height);
+      text += '\n';
+    } catch (const display::ProfileError& e) {
+      text += fmt::format("{:28} (broken: {})\n", name, e.what());
+    }
+  }
+  return text;
 }
 
 display::QuiltLayout choose_quilt_layout(int views, int tile_width, int tile_height) {
@@ -128,17 +146,22 @@ float view_aspect(const DisplayChoice& choice, const CameraArgs& camera) {
 
 display::ViewSet make_frame_views(const scene::Scene& scene, const DisplayChoice& choice,
                                   const DisplayArgs& display, const CameraArgs& camera) {
+  return make_frame_views(scene, choice, display, camera, resolve_camera(scene, camera));
+}
+
+display::ViewSet make_frame_views(const scene::Scene& scene, const DisplayChoice& choice,
+                                  const DisplayArgs& display, const CameraArgs& camera,
+                                  const scene::Camera& c) {
   if (choice.single()) {
     // Exactly the single view `ddish render` always drew, so existing outputs do not move.
     display::ViewSet set;
     set.kind = display::ViewSetKind::Single;
     set.name = "single";
-    set.views = {make_view(scene, camera)};
+    set.views = {scene::camera_view(c, camera.width, camera.height)};
     set.layout = display::layout_from_tiles(1, 1, camera.width, camera.height);
     set.aspect = float(camera.width) / float(camera.height);
     return set;
   }
-  const scene::Camera c = resolve_camera(scene, camera);
   const float focal = display.focal_distance.value_or(
       display::focal_distance_to_scene_center(scene, c.eye, c.forward));
   return display::make_view_set(*choice.profile, display::base_camera(c, focal));

@@ -38,6 +38,9 @@ struct DisplayArgs {
   std::optional<float> focal_distance;  // --focal-distance M
 };
 
+// `--display list`: one line per profile in displays/ (name, views, quilt, tile, panel).
+std::string display_list();
+
 // Registers --display, --views and --focal-distance.
 void add_display_options(CLI::App& cmd, DisplayArgs& args);
 
@@ -67,5 +70,10 @@ display::QuiltLayout choose_quilt_layout(int views, int tile_width, int tile_hei
 // its focal distance is --focal-distance, else display::focal_distance_to_scene_center.
 display::ViewSet make_frame_views(const scene::Scene& scene, const DisplayChoice& choice,
                                   const DisplayArgs& display, const CameraArgs& camera);
+// The same from a camera the caller posed (the live window's interactive camera); --camera is
+// then not looked at, --width / --height and the profile are.
+display::ViewSet make_frame_views(const scene::Scene& scene, const DisplayChoice& choice,
+                                  const DisplayArgs& display, const CameraArgs& camera,
+                                  const scene::Camera& posed_camera);
 
 }  // namespace ddish::app

@@ -18,21 +18,20 @@ double screen_v(const LenticularMapping& m, int row) {
   return 1.0 - (double(row) + 0.5) / double(m.screen_height);
 }
 
-// Bilinear sample of one channel of tile `rect` at tile coordinates (u, v), v upwards; texel
-// centres at half-integers, clamped to the tile so neighbouring views never bleed in.
-float sample_tile(ConstRgbView quilt, const TileRect& rect, double u, double v, int channel) {
-  const double tx = std::clamp(u * rect.width - 0.5, 0.0, double(rect.width - 1));
-  const double ty = std::clamp((1.0 - v) * rect.height - 0.5, 0.0, double(rect.height - 1));
-  const int x0 = static_cast<int>(tx);
-  const int y0 = static_cast<int>(ty);
-  const int x1 = std::min(x0 + 1, rect.width - 1);
-  const int y1 = std::min(y0 + 1, rect.height - 1);
-  const float fx = static_cast<float>(tx - x0);
-  const float fy = static_cast<float>(ty - y0);
+// Texel centres at half-integers, clamped to the tile so neighbouring views never bleed in.
+BilinearTap tap(double t, int size) {
+  const double c = std::clamp(t * size - 0.5, 0.0, double(size - 1));
+  const int i0 = static_cast<int>(c);
+  return BilinearTap{i0, std::min(i0 + 1, size - 1), static_cast<float>(c - i0)};
+}
+
+// Bilinear sample of one channel of tile `rect` through the taps of one panel pixel.
+float sample_tile(ConstRgbView quilt, const TileRect& rect, const BilinearTap& tx,
+                  const BilinearTap& ty, int channel) {
   auto at = [&](int x, int y) { return quilt.pixel(rect.x + x, rect.y + y)[channel]; };
-  const float top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
-  const float bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
-  return top + (bottom - top) * fy;
+  const float top = at(tx.i0, ty.i0) + (at(tx.i1, ty.i0) - at(tx.i0, ty.i0)) * tx.f;
+  const float bottom = at(tx.i0, ty.i1) + (at(tx.i1, ty.i1) - at(tx.i0, ty.i1)) * tx.f;
+  return top + (bottom - top) * ty.f;
 }
 
 }  // namespace
@@ -72,6 +71,16 @@ int subpixel_view(const LenticularMapping& m, int x, int row, int channel, int v
   return std::clamp(view, 0, views - 1);
 }
 
+BilinearTap tile_tap_x(const LenticularMapping& m, int x, int tile_width) {
+  return tap(screen_u(m, x), tile_width);
+}
+
+BilinearTap tile_tap_y(const LenticularMapping& m, int row, int tile_height) {
+  // v grows upwards, tile rows count from the top.
+  const double v = screen_v(m, row);
+  return tap(1.0 - (m.flip_y ? 1.0 - v : v), tile_height);
+}
+
 RgbImage interleave(ConstRgbView quilt, const QuiltLayout& layout, int views,
                     const LenticularMapping& mapping) {
   layout.validate();
@@ -86,15 +95,15 @@ RgbImage interleave(ConstRgbView quilt, const QuiltLayout& layout, int views,
                                 std::to_string(layout.cells()) + " quilt cells");
   }
   RgbImage panel(mapping.screen_width, mapping.screen_height);
+  const TileRect first = layout.tile(0);
   for (int row = 0; row < mapping.screen_height; ++row) {
-    const double v = screen_v(mapping, row);
-    const double sample_v = mapping.flip_y ? 1.0 - v : v;
+    const BilinearTap ty = tile_tap_y(mapping, row, first.height);
     for (int x = 0; x < mapping.screen_width; ++x) {
-      const double sample_u = screen_u(mapping, x);
+      const BilinearTap tx = tile_tap_x(mapping, x, first.width);
       float* out = panel.pixel(x, row);
       for (int channel = 0; channel < 3; ++channel) {
         const int view = subpixel_view(mapping, x, row, channel, views);
-        out[channel] = sample_tile(quilt, layout.tile(view), sample_u, sample_v, channel);
+        out[channel] = sample_tile(quilt, layout.tile(view), tx, ty, channel);
       }
     }
   }

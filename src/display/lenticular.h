@@ -51,6 +51,19 @@ double subpixel_phase(const LenticularMapping& m, int x, int row, int sample);
 // shows.
 int subpixel_view(const LenticularMapping& m, int x, int row, int channel, int views);
 
+// One axis of the bilinear tap a panel pixel takes inside a tile: texels i0 and i1 (tile
+// coordinates, rows from the top) weighed 1 − f and f. It depends on the panel column (x) or row
+// alone, and on the tile size, never on the view; interleave() samples through these, and the GPU
+// pass (display/gpu_compositor.h) reads them from tables so that both take the same texels with
+// the same weights.
+struct BilinearTap {
+  int i0 = 0;
+  int i1 = 0;
+  float f = 0.0f;
+};
+BilinearTap tile_tap_x(const LenticularMapping& m, int x, int tile_width);
+BilinearTap tile_tap_y(const LenticularMapping& m, int row, int tile_height);
+
 // The screen_width × screen_height panel image. `views` is how many quilt cells hold views
 // (≤ layout.cells()). Throws std::invalid_argument when the quilt is not layout-sized or views
 // is out of range.

@@ -269,6 +269,11 @@ Profile parse_profile(const std::string& json_text, const std::string& source) {
   p.aspect = static_cast<float>(
       top.positive("aspect", double(p.layout.tile_width) / double(p.layout.tile_height)));
   read_camera(top, p);
+  if (top.has("panel")) {
+    Fields panel(top.object("panel"), top.source(), "panel");
+    p.panel = Profile::Panel{panel.integer("width"), panel.integer("height")};
+    panel.finish();
+  }
   p.refresh_hz = top.optional_positive("refresh_hz");
   p.frame_budget_ms = top.optional_positive("frame_budget_ms");
   top.finish();

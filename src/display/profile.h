@@ -40,6 +40,14 @@ struct Profile {
   LightFieldParams lightfield;  // model == LightField (lightfield.views == views)
   StereoParams stereo;          // model == Stereo
   GridParams grid;              // model == Grid
+  // The panel's native resolution (Looking Glass devices): the size of the lenticular panel
+  // image, which a device's calibration (visual.json: screenW × screenH) must match, and what
+  // `ddish render --window --fullscreen` shows 1:1 on the panel's monitor.
+  struct Panel {
+    int width = 0;
+    int height = 0;
+  };
+  std::optional<Panel> panel;
   std::optional<double> refresh_hz;
   std::optional<double> frame_budget_ms;
 

@@ -59,6 +59,8 @@ const Srgb8Tables& srgb8_tables() {
 
 float srgb8_decode(std::uint8_t code) { return srgb8_tables().decoded[code]; }
 
+std::span<const float, 255> srgb8_midpoints() { return srgb8_tables().midpoint; }
+
 std::uint8_t srgb8_encode(float linear) {
   if (!(linear > 0.0f)) return 0;  // NaN and everything at or below 0
   const auto& m = srgb8_tables().midpoint;

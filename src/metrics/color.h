@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include <glm/glm.hpp>
 
@@ -25,6 +26,9 @@ glm::vec3 display_value(const glm::vec3& linear);
 // inverse of srgb8_decode (srgb8_encode(srgb8_decode(c)) == c for every c).
 float srgb8_decode(std::uint8_t code);
 std::uint8_t srgb8_encode(float linear);
+// srgb8_encode's thresholds: a value at or above midpoint c (0..254) encodes to more than c. With
+// the 256 decoded values they let a GPU pass encode exactly as srgb8_encode does.
+std::span<const float, 255> srgb8_midpoints();
 
 // Rec. 709 / sRGB luma weights (0.2126, 0.7152, 0.0722) applied to whatever values it is given;
 // SSIM applies it to display values.

@@ -77,6 +77,9 @@ class Scheduler {
   explicit Scheduler(const SchedulerOptions& options);
 
   const SchedulerOptions& options() const { return options_; }
+  // Switches the mode from the next plan on (the live window's U key); the blend rule and the
+  // budget controller's learnt costs stay.
+  void set_mode(ScheduleMode mode) { options_.mode = mode; }
   const BudgetController& budget() const { return budget_; }
 
   // Plans the next update of `volume` for the views of this frame (any number, even none: then

@@ -211,3 +211,49 @@ TEST(Profiles, MissingFilesAndUnknownNamesSayWhatExists) {
 
 }  // namespace
 }  // namespace ddish::display
+
+namespace ddish::display {
+namespace {
+
+// Issue 16's device table (vendor documentation; per-view sizes from the Blender add-on's device
+// table): quilt, views, tile, and the panel resolution each profile carries.
+TEST(Profiles, EveryLookingGlassDeviceOfTheTable) {
+  struct Device {
+    const char* name;
+    int columns, rows, views, tile_w, tile_h, panel_w, panel_h;
+  };
+  for (const Device& d : {Device{"looking-glass-portrait", 8, 6, 48, 420, 560, 1536, 2048},
+                          Device{"looking-glass-go", 11, 6, 66, 372, 682, 1440, 2560},
+                          Device{"looking-glass-16-landscape", 7, 7, 49, 857, 857, 3840, 2160},
+                          Device{"looking-glass-16-portrait", 11, 6, 66, 545, 1000, 2160, 3840},
+                          Device{"looking-glass-32-landscape", 7, 7, 49, 1170, 1170, 7680, 4320},
+                          Device{"looking-glass-32-portrait", 11, 6, 66, 744, 1364, 4320, 7680},
+                          Device{"looking-glass-65", 8, 9, 72, 1024, 910, 7680, 4320},
+                          Device{"looking-glass-16", 5, 9, 45, 819, 455, 3840, 2160}}) {
+    SCOPED_TRACE(d.name);
+    const Profile p = load_profile(d.name);
+    EXPECT_EQ(p.model, CameraModel::LightField);
+    EXPECT_EQ(p.layout.columns, d.columns);
+    EXPECT_EQ(p.layout.rows, d.rows);
+    EXPECT_EQ(p.views, d.views);
+    EXPECT_EQ(p.layout.tile_width, d.tile_w);
+    EXPECT_EQ(p.layout.tile_height, d.tile_h);
+    ASSERT_TRUE(p.panel.has_value());
+    EXPECT_EQ(p.panel->width, d.panel_w);
+    EXPECT_EQ(p.panel->height, d.panel_h);
+    EXPECT_NEAR(p.aspect, float(d.panel_w) / float(d.panel_h), 1e-6f);  // the panel's aspect
+  }
+}
+
+TEST(Profiles, PanelNeedsWholePositiveSizes) {
+  const std::string base = R"({"name": "p", "views": 4, "quilt": {"columns": 2, "rows": 2},
+    "tile": {"width": 8, "height": 8}, "camera": {"model": "lightfield"}, )";
+  EXPECT_EQ(parse_profile(base + R"("panel": {"width": 30, "height": 40}})", "p.json").panel->height, 40);
+  EXPECT_THROW(parse_profile(base + R"("panel": {"width": 0, "height": 40}})", "p.json"), ProfileError);
+  EXPECT_THROW(parse_profile(base + R"("panel": {"width": 30}})", "p.json"), ProfileError);
+  EXPECT_THROW(parse_profile(base + R"("panel": {"width": 30, "height": 40, "dpi": 3}})", "p.json"),
+               ProfileError);
+}
+
+}  // namespace
+}  // namespace ddish::display

@@ -1,0 +1,150 @@
+// `ddish render --window`: the frame loop's live view source and frame sink. The window's
+// interactive camera (window/orbit_camera.h) makes each frame's views, so moving it re-ranks the
+// probes like any view; after each batch the renderer's display buffer is gathered on the GPU
+// (display/gpu_compositor.h) and, after the frame, composed into the display's image (single
+// view, stereo pair, quilt, or with a calibration the lenticular panel image) and presented
+// (gpu/presenter.h). Nothing is read back for the window.
+//
+// Order of life: the window opens before the GPU context (its surface extensions go into the
+// instance), attach() after it, detach() (LiveAttachment) before the context goes.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "app/probe_source.h"
+#include "display/gpu_compositor.h"
+#include "display/lenticular.h"
+#include "display/quilt_layout.h"
+#include "raster/renderer.h"
+#include "scene/scene.h"
+#include "window/input.h"
+#include "window/orbit_camera.h"
+#include "window/sdl_window.h"
+
+namespace ddish::gpu {
+class Context;
+class Presenter;
+}  // namespace ddish::gpu
+
+
+namespace ddish::app {
+
+struct LiveArgs {
+  bool window = false;      // --window
+  int monitor = 0;          // --monitor N
+  bool fullscreen = false;  // --fullscreen
+  bool mailbox = false;     // --mailbox: MAILBOX where offered, else FIFO
+  bool hold = false;        // --hold: after the last frame keep showing it until closed
+};
+
+// What the keys switched since the last take_switches().
+struct LiveSwitches {
+  bool indirect = false;
+  bool schedule = false;
+  bool overlay = false;
+};
+
+class LiveWindow {
+ public:
+  // `start` is the scene camera the run starts from and `focal` its focal distance: the orbit
+  // target is that far ahead, so the first frame equals the headless run's. Throws
+  // window::WindowError (no display server, bad monitor).
+  LiveWindow(const LiveArgs& args, const std::string& title, int frame_width, int frame_height,
+             const scene::Camera& start, float focal);
+  ~LiveWindow();
+
+  std::vector<std::string> instance_extensions() const { return window_.instance_extensions(); }
+  static std::vector<std::string> device_extensions();
+
+  // The GPU half: surface, swapchain, compositor for `views` views of layout's tiles.
+  void attach(gpu::Context& gpu, const display::QuiltLayout& layout, int views,
+              const std::optional<display::LenticularMapping>& lenticular);
+  void detach();
+
+  // Once per frame, before its views: events → camera, switches, resize, quit.
+  void pump();
+  // The camera as the user has moved it (the start camera's clip planes and fov), and the
+  // focal distance (the orbit distance).
+  scene::Camera camera() const;
+  float focal_distance() const { return camera_.distance(); }
+  window::OrbitCamera& orbit() { return camera_; }
+
+  // The renderer's hand-off: gather each batch (read_back: also read the pixels back, for files).
+  raster::RenderRequest request(bool read_back) const;
+  // Composes and presents the frame gathered last; returns the milliseconds it took.
+  double present();
+  // Keeps presenting the last frame until the window is closed or `stop` is raised.
+  void hold(const std::atomic<bool>& stop);
+
+  LiveSwitches take_switches();
+  // The probe-grid overlay for the next presents (empty: none).
+  void set_overlay(std::span<const display::GpuCompositor::OverlayPoint> points,
+                   std::span<const glm::mat4> view_projections);
+  bool quit() const { return quit_; }
+  void set_status(const std::string& line) { window_.set_title(line); }
+  const window::Window& window() const { return window_; }
+  int output_width() const;
+  int output_height() const;
+
+ private:
+  LiveArgs args_;
+  window::Window window_;
+  window::OrbitCamera camera_;
+  window::InputState input_;
+  scene::Camera start_;
+  bool quit_ = false;
+  bool resized_ = false;
+  LiveSwitches switches_;
+  std::chrono::steady_clock::time_point last_pump_;
+  std::unique_ptr<display::GpuCompositor> compositor_;
+  std::unique_ptr<gpu::Presenter> presenter_;
+};
+
+// The probe source with the window's indirect-light switch: while off, the frame's probe update
+// is skipped (as with --no-indirect); everything else passes through.
+class SwitchableProbes final : public ProbeSource {
+ public:
+  SwitchableProbes(ProbeSource& inner, const bool& on) : inner_(inner), on_(on) {}
+  probes::ProbeVolume& volume() override { return inner_.volume(); }
+  void posed(const scene::Scene& scene, const std::vector<int>& moved,
+             metrics::FrameTimings& timings) override {
+    inner_.posed(scene, moved, timings);
+  }
+  ProbeStep update(const std::vector<scene::View>& views, bool enabled,
+                   metrics::FrameTimings& timings, FrameCounts& counts) override {
+    return inner_.update(views, enabled && on_, timings, counts);
+  }
+  void finished(int frame, const metrics::FrameTimings& timings, const ProbeStep& step,
+                bool enabled, FrameCounts& counts) override {
+    inner_.finished(frame, timings, step, enabled && on_, counts);
+  }
+  void set_frame_budget(double budget_ms) override { inner_.set_frame_budget(budget_ms); }
+  WarmupReport warm_up(const WarmupOptions& options) override {
+    return on_ ? inner_.warm_up(options) : WarmupReport{};
+  }
+
+ private:
+  ProbeSource& inner_;
+  const bool& on_;
+};
+
+// The probe-grid overlay of the frame's views: every probe of `volume` as a dot, green when
+// active, yellow while not yet classified, red when inactive (inside geometry); null: none.
+void set_probe_overlay(LiveWindow& live, const probes::ProbeVolume* volume,
+                       std::span<const scene::View> views);
+
+// Detaches the window's GPU half when it goes: declare it after the gpu::Context.
+struct LiveAttachment {
+  LiveWindow* live = nullptr;
+  ~LiveAttachment() {
+    if (live) live->detach();
+  }
+};
+
+}  // namespace ddish::app
