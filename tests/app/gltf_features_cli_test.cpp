@@ -19,9 +19,10 @@ using cli::Result;
 using ddish::metrics::Image;
 
 constexpr float kTol = 0.01f;
-// Rasterizer against reference on the normal-mapped panels' mean radiance (measured: see the
-// test).
-constexpr float kNormalMapTolerance = 0.03f;
+// Rasterizer against reference on the normal-mapped panels' mean radiance: measured 0.03 %
+// (0.7419 against 0.7422 and 0.1980 against 0.1981, reference spp 64); 1 % leaves room for the
+// reference's 16 spp here and for shadow-map filtering on other devices.
+constexpr float kNormalMapTolerance = 0.01f;
 
 class GltfFeaturesCli : public cli::TempDirTest {
  protected:
