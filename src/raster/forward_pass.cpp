@@ -123,7 +123,8 @@ VkPipeline ForwardPass::pipeline_for(ViewMethod method, std::uint32_t view_count
   p.alpha_blend = blend;
   Pipeline made = make_graphics_pipeline(device_, p);
   const VkPipeline handle = made.get();
-  if (method == ViewMethod::multiview) multiview_pipelines_.emplace(std::make_pair(mask, blend), std::move(made));
+  if (method == ViewMethod::multiview)
+    multiview_pipelines_.emplace(std::make_pair(mask, blend), std::move(made));
   else if (method == ViewMethod::layered) layered_pipeline_[b] = std::move(made);
   else pipeline_[b] = std::move(made);
   return handle;

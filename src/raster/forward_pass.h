@@ -1,8 +1,8 @@
 // The forward pass: every instance drawn for every view with direct light, SH-probe indirect
 // light and emission (forward_main.glsl), opaque and masked materials first, then glTF BLEND
 // materials in a transparent pass (sorted back to front per instance, blended over what is
-// behind, depth tested but not written, lit by the probes like the rest), into an HDR target cleared to the environment's
-// radiance (the uniform sky is what a pixel that hits nothing sees; a clear, not a full-screen
+// behind, depth tested but not written, lit by the probes like the rest), into an HDR target
+// cleared to the environment's radiance (the uniform sky is what a pixel that hits nothing sees; a clear, not a full-screen
 // draw, so lavapipe 22's multiview bug with primitives outside the clip volume cannot touch it).
 // The views go into a layered target, one layer per view, recorded as ViewMethod says, each
 // pass drawing only the clusters its views can see when culling is on (raster/draw_list.h).

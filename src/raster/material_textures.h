@@ -1,8 +1,8 @@
 // Materials on the GPU: the scene's textures as sampled images with full mip chains (generated
 // on the GPU by blits), one sampler per glTF wrap and filter combination, and one descriptor
 // set per material (lavapipe has no descriptor indexing, so a material is bound per draw): a
-// uniform block of its factors and texture transforms, and five combined image samplers (base colour and emissive in sRGB formats, the rest linear).
-// Empty slots are bound to a 1x1 white texture and flagged off in the uniform block.
+// uniform block of its factors and texture transforms, and five combined image samplers (base
+// colour and emissive in sRGB formats, the rest linear). Empty slots are bound to a 1x1 white texture and flagged off in the uniform block.
 #pragma once
 
 #include <cstdint>

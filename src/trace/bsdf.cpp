@@ -74,8 +74,8 @@ Bsdf::Bsdf(const BsdfParams& params) : params_(params), alpha_(Ggx::alpha_from_r
 }
 
 glm::vec3 Bsdf::layer(float cos_theta) const {
-  return params_.specular * (layer_albedo_(cos_theta) + (params_.dielectric_f0 - DielectricSpecularAlbedo::kF0) *
-                                                            layer_albedo_.slope(cos_theta));
+  const glm::vec3 df0 = params_.dielectric_f0 - DielectricSpecularAlbedo::kF0;
+  return params_.specular * (layer_albedo_(cos_theta) + df0 * layer_albedo_.slope(cos_theta));
 }
 
 glm::vec3 Bsdf::eval_diffuse(const glm::vec3& wo, const glm::vec3& wi) const {

@@ -1,6 +1,6 @@
 // From a ray hit to a shading point: world-space triangle, barycentric interpolation of normals,
-// UVs (per texture slot: UV set and KHR_texture_transform), vertex colours and tangents, textures looked up at the hit (base colour, metallic-roughness, emissive,
-// normal map), double-sided handling, and the self-intersection-safe ray offset. The occlusion
+// UVs (per texture slot: UV set and KHR_texture_transform), vertex colours and tangents,
+// textures looked up at the hit (base colour, metallic-roughness, emissive, normal map), double-sided handling, and the self-intersection-safe ray offset. The occlusion
 // texture is not read: it is ambient occlusion baked for rasterizers, and paths find occlusion
 // themselves.
 #pragma once

@@ -1,6 +1,6 @@
 // Material textures as the tracer samples them: a box-filtered RGBA8 mip chain per scene texture,
-// lookups with the glTF sampler's filters (trilinear by default) with the glTF sampler's addressing (repeat, clamp, mirrored repeat), and sRGB
-// decoding per texel before filtering (so filtered colours are averages of linear values, as the
+// lookups with the glTF sampler's filters (trilinear by default) and addressing (repeat, clamp,
+// mirrored repeat), and sRGB decoding per texel before filtering (so filtered colours are averages of linear values, as the
 // GPU's sRGB formats do). Mips stay RGBA8 to keep memory sane on texture-heavy scenes (Sponza: 49
 // textures of up to 2048²): level 0 is the scene's own pixel data, the smaller levels add a third.
 #pragma once
