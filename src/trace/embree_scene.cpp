@@ -52,7 +52,9 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
         const float width = q.cone_width + q.cone_spread * t;
         const glm::mat4& xf = geom->owner->transform(static_cast<int>(instance)).object_to_world;
         const float area = world_triangle(*geom->mesh, xf, prim).area();
-        lod = tex->lod_for_footprint(width, 1.0f, uv_area(*geom->mesh, prim), area);
+        const scene::TextureSlot& slot = mat.base_color_texture;
+        lod = tex->lod_for_footprint(
+            width, 1.0f, uv_area(*geom->mesh, prim, slot.texcoord) * slot.transform.area_scale(), area);
       }
     }
     const float alpha = alpha_at(mat, *geom->textures, *geom->mesh, prim, u, v, lod);
