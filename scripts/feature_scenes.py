@@ -203,11 +203,28 @@ def blend_panels(out_dir):
     blend the far one over it. Expected radiance: left third 0.25 red + 0.75 background; middle
     0.25 red + 0.75 (0.5 green + 0.5 background); right the background. The camera at z = 3
     sees the background edge to edge in a 3:1 image. No light, no sidecar."""
-    g = Gltf("blend_panels")
+    write_blend_panels(out_dir, "blend_panels", unlit)
+
+
+def blend_panels_lit(out_dir):
+    """blend_panels with lit (rough dielectric) materials under ddish's default sky: the panels
+    are shaded by the probes, and the probes behind a single-sided blended panel must see
+    through its back (the rasterizer culls it) for the panel to be lit as the reference lights
+    it."""
+    def lit(g, name, color, texture_info=None, alpha_mode=None):
+        m = g.material(name, color)
+        if alpha_mode:
+            g.doc["materials"][m]["alphaMode"] = alpha_mode
+        return m
+    write_blend_panels(out_dir, "blend_panels_lit", lit)
+
+
+def write_blend_panels(out_dir, name, make_material):
+    g = Gltf(name)
     (near_color, near_alpha), (far_color, far_alpha) = BLEND_NEAR, BLEND_FAR
-    near = unlit(g, "NearRed", list(near_color) + [near_alpha], alpha_mode="BLEND")
-    far = unlit(g, "FarGreen", list(far_color) + [far_alpha], alpha_mode="BLEND")
-    back = unlit(g, "Background", list(BLEND_BACKGROUND) + [1.0])
+    near = make_material(g, "NearRed", list(near_color) + [near_alpha], alpha_mode="BLEND")
+    far = make_material(g, "FarGreen", list(far_color) + [far_alpha], alpha_mode="BLEND")
+    back = make_material(g, "Background", list(BLEND_BACKGROUND) + [1.0])
     g.node({"name": "Near", "mesh": g.mesh("Near", [panel(near, -1.2, 1.0 / 3.0, -0.4, 0.4, 1.0)])})
     g.node({"name": "Far", "mesh": g.mesh("Far", [panel(far, -0.42, 0.42, -0.45, 0.45, 0.5)])})
     g.node({"name": "Background", "mesh": g.mesh("Background", [panel(back, -1.5, 1.5, -0.5, 0.5)])})
@@ -253,4 +270,5 @@ def dielectric_panels(out_dir):
     g.write(out_dir, None)
 
 
-SCENES = (vertex_colors, texture_transform, texture_filters, normal_map_plane, blend_panels, dielectric_panels)
+SCENES = (vertex_colors, texture_transform, texture_filters, normal_map_plane, blend_panels, blend_panels_lit,
+          dielectric_panels)
