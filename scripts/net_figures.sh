@@ -19,7 +19,7 @@ IMAGE="--width 256 --height 256"
 S=scenes/cornell_box.gltf
 wait_for() { for _ in $(seq 1 600); do grep -q "$2" "$1" 2>/dev/null && return 0; sleep 0.1; done; echo "timeout: $2 in $1" >&2; return 1; }
 
-"$B/ddish" render $S $PROBES $IMAGE --frames 5 --out "$D/render" >/dev/null 2>&1
+"$B/ddish" render $S $PROBES $IMAGE --frames 5 --warmup-ms 0 --out "$D/render" >/dev/null 2>&1
 echo "encoding,zstd,bytes_first_update,probes_sent,bytes_per_probe,psnr_vs_in_process_db"
 port=24000
 for enc in fp16 shared-exponent compact; do

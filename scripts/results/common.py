@@ -201,6 +201,10 @@ def render(runner, path, out, args, what, timeout=1800):
     shutil.rmtree(out, ignore_errors=True)
     if "--schedule" not in [str(a) for a in args]:
         args = [*args, *uniform_args()]
+    # Cold probes at frame 0, as the paper's curves start: the warm-up (on by default, bounded by
+    # time, so machine-dependent) would hide the convergence the sections measure.
+    if "--warmup-ms" not in [str(a) for a in args]:
+        args = [*args, "--warmup-ms", "0"]
     runner.run([runner.exe("ddish"), "render", path, "--out", out, "--timings", tj, *args], what,
                timeout=timeout)
     return json.loads(tj.read_text())

@@ -137,6 +137,8 @@ def main():
             ("Every `ddish render` outside section 4 runs with `" + " ".join(uniform_args()) +
              "`: the published behaviour, every active probe at full samples every frame.\n"
              if uniform_args() else ""),
+            "Every `ddish render` runs with `--warmup-ms 0`: the probes start cold at frame 0, so the "
+            "curves show the convergence the warm-up (on by default) would otherwise hide.\n",
             "## Machine\n", "| | |", "| --- | --- |"]
     for k, v in info.items():
         head.append(f"| {k} | {v} |")
