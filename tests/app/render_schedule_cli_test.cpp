@@ -15,9 +15,10 @@ namespace {
 
 using namespace display_cli;
 
-// A 4 × 4 × 4 grid, few paths, tiny single view: the tests are about counts, not images.
+// A 4 × 4 × 4 grid, few paths, tiny single view: the tests are about counts, not images, of
+// the per-frame schedule from cold probes (no warm-up before frame 0).
 const std::string kTiny =
-    " --grid 4,4,4 --probe-samples 8 --bounces 1 --msaa 1 --width 16 --height 16";
+    " --grid 4,4,4 --probe-samples 8 --bounces 1 --msaa 1 --width 16 --height 16 --warmup-ms 0";
 
 class RenderScheduleCli : public Cli {
  protected:
