@@ -23,9 +23,9 @@ class WarmupCli : public cli::TempDirTest {
 const std::string kRun = " --width 32 --height 32 --grid 4,4,4 --probe-samples 32 --msaa 1 --budget-ms 2.3";
 
 TEST_F(WarmupCli, FrameZeroAfterTheWarmUpIsCloserToConverged) {
-  // Converged: no budget, every active probe at 1024 samples for 6 frames.
+  // Converged: no budget, every active probe at 512 samples for 4 frames.
   ASSERT_EQ(run("render " + cli::cornell() + " --width 32 --height 32 --grid 4,4,4 --msaa 1 --budget-ms 0 "
-                "--probe-samples 1024 --frames 6 --warmup-ms 0 --out " + path("conv")).code, 0);
+                "--probe-samples 512 --frames 4 --warmup-ms 0 --out " + path("conv")).code, 0);
   const cli::Result cold = run("render " + cli::cornell() + kRun + " --warmup-ms 0 --out " + path("cold"));
   ASSERT_EQ(cold.code, 0) << cold.err;
   EXPECT_EQ(cold.err.find("warm-up:"), std::string::npos) << cold.err;
@@ -35,10 +35,12 @@ TEST_F(WarmupCli, FrameZeroAfterTheWarmUpIsCloserToConverged) {
   ASSERT_EQ(warm.code, 0) << warm.err;
   EXPECT_NE(warm.err.find("render: warm-up: 4 rounds over "), std::string::npos) << warm.err;
   EXPECT_NE(warm.err.find(", 128 samples each, in "), std::string::npos) << warm.err;
-  const auto ref = ddish::metrics::read_image(dir_ / "conv" / "frame_0005.exr");
+  const auto ref = ddish::metrics::read_image(dir_ / "conv" / "frame_0003.exr");
   const double e_cold = ddish::metrics::rmse(ddish::metrics::read_image(dir_ / "cold" / "frame_0000.exr"), ref);
   const double e_warm = ddish::metrics::rmse(ddish::metrics::read_image(dir_ / "warm" / "frame_0000.exr"), ref);
   // Cold, frame 0 has traced only the budget's few probes; warm, every probe has 128 samples.
+  // Measured: cold 0.148, warm 0.055 (0.37 of it); the bound of 0.5 leaves room for the noise
+  // of 128 samples against a reference that is itself 2048 samples deep.
   std::printf("frame 0 RMSE against converged: cold %.4g, warm %.4g\n", e_cold, e_warm);
   EXPECT_LT(e_warm, 0.5 * e_cold) << "cold " << e_cold << ", warm " << e_warm;
 }
