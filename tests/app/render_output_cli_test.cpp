@@ -18,7 +18,7 @@ class RenderOutputCli : public Cli {};
 TEST_F(RenderOutputCli, EveryFrameIsWrittenWithItsOwnPixels) {
   // The animated box moves between frames, so frames differ and a mix-up would show.
   const std::string scene = quote(std::string(DDISH_SOURCE_DIR) + "/scenes/cornell_animated.gltf");
-  // No warm-up: its rounds are bounded by time, so two runs need not trace the same samples.
+  // No warm-up: a warm-up cut short by its time bound would differ between the two runs.
   const std::string common = " --width 24 --height 24 --probe-samples 8 --msaa 1 --fps 4 --warmup-ms 0";
   Result all = run("render " + scene + common + " --frames 3 --every --out " + path("every") +
                    " --timings " + path("every.json"));

@@ -15,9 +15,8 @@ namespace {
 
 using namespace display_cli;
 
-// A 4 × 4 × 4 grid, few paths, tiny single view: the tests are about counts, not images. No
-// warm-up: the counts are the frames' own (the warm-up would classify and trace every probe
-// before frame 0; tests/app/warmup_cli_test.cpp covers it).
+// A 4 × 4 × 4 grid, few paths, tiny single view: the tests are about counts, not images, of
+// the per-frame schedule from cold probes (no warm-up before frame 0).
 const std::string kTiny =
     " --grid 4,4,4 --probe-samples 8 --bounces 1 --msaa 1 --width 16 --height 16 --warmup-ms 0";
 

@@ -57,7 +57,7 @@ class ServeView : public cli::TempDirTest {
 // fp16 on the wire is what the renderer packs for the GPU anyway, so the images are identical;
 // the compact encoding's error (about 1% of L0 in the high bands) stays above 40 dB here.
 TEST_F(ServeView, ViewEqualsInProcessRender) {
-  // No warm-up: the server's 3 updates are the render's 3 frames (the server does not warm up).
+  // No warm-up: the view's 3 frames take the server's first 3 updates.
   ASSERT_EQ(run("render " + cli::cornell() + " " + kProbeFlags + " " + kImage +
                           " --frames 3 --warmup-ms 0 --out " + quote((dir_ / "render").string())).code, 0);
   int test = 0;

@@ -1,7 +1,12 @@
 // `ddish xr` under the headless test runtime (tests/xr_runtime), through the system loader: what
 // the runtime recorded (session.json, each submitted eye as EXR) and what ddish said.
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -187,6 +192,33 @@ TEST_F(XrCli, TheBudgetFollowsTheDisplayPeriod) {
     EXPECT_NEAR(t["xr"][k]["budget_ms"].get<double>(), want, 1e-3) << k;
     EXPECT_NEAR(t["frames"][k]["scheduler"]["budget_ms"].get<double>(), want, 1e-3) << k;
   }
+}
+
+// Streamed probes: `ddish xr --connect` takes them from a `ddish serve` on loopback through the
+// same client as `ddish view` (app/probe_setup.h), and its frames carry the stream's record.
+TEST_F(XrCli, ConnectTakesTheProbesOfAServer) {
+  const std::string bind = "tcp://127.0.0.1:" + std::to_string(58000 + int(getpid() % 3000) * 2);
+  const std::string serve_log = (dir_ / "serve.log").string();
+  const std::string start = cli::quote(DDISH_EXE) + " serve " + cli::cornell() + " --bind " + bind +
+                            " --grid 4,4,4 --probe-samples 32 --bounces 4 --frames 2 --seconds 30 >/dev/null 2>" +
+                            cli::quote(serve_log) + " & echo $! >" + path("serve.pid");
+  ASSERT_EQ(std::system(start.c_str()), 0);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (cli::slurp(serve_log).find("update 2:") == std::string::npos && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  const cli::Result r = run("xr " + cli::cornell() + " --connect " + bind +
+                                " --grid 4,4,4 --frames 3 --wait-ms 5000 --stale-ms 20000 --timings " + path("t.json"),
+                            runtime_env(R"({"eye_width": 32, "eye_height": 36})"));
+  const int pid = std::stoi(cli::slurp(dir_ / "serve.pid"));
+  ::kill(pid, SIGTERM);
+  ASSERT_EQ(r.code, 0) << r.err << cli::slurp(serve_log);
+  EXPECT_NE(r.err.find("xr: probes from " + bind), std::string::npos) << r.err;
+  std::ifstream in(dir_ / "t.json");
+  const json t = json::parse(in);
+  ASSERT_EQ(t["frames"].size(), 3u);
+  EXPECT_TRUE(t["frames"][0]["stream"]["synced"].get<bool>()) << t["frames"][0].dump();
+  EXPECT_EQ(t["frames"][0]["probe_updates"], 0);  // nothing traced here
+  EXPECT_EQ(rendered(session()).size(), 3u);
 }
 
 }  // namespace
