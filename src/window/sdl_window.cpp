@@ -19,6 +19,8 @@ Window::Window(const WindowOptions& o) {
   if (!display_server_named())
     throw WindowError("--window needs a display server, and neither DISPLAY nor WAYLAND_DISPLAY "
                       "is set; without --window ddish renders to files");
+  // SIGINT and SIGTERM stay ddish's (app/interrupt.h: the frame in progress ends the run).
+  SDL_SetHint(SDL_HINT_NO_SIGNAL_HANDLERS, "1");
   if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
     throw WindowError(std::string("--window needs a display server, and SDL found none (") +
                       SDL_GetError() + "); without --window ddish renders to files");
