@@ -56,6 +56,7 @@
 #include "app/frame_loop.h"
 #include "app/frame_outputs.h"
 #include "app/interrupt.h"
+#include "app/live_controls.h"
 #include "app/live_window.h"
 #include "app/lighting_options.h"
 #include "app/output_queue.h"
@@ -335,38 +336,13 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
 
   // The views are rebuilt from the posed scene every frame: an animated camera node moves the
   // whole rig.
-  std::atomic<bool> live_stop{false};
-  bool overlay = false;
-  bool indirect = !a.no_indirect;
-  const probes::ProbeVolume dark(placement.grid, a.probe.sh_order);  // what "indirect off" shows
+  std::unique_ptr<LiveControls> controls;
+  if (live)
+    controls = std::make_unique<LiveControls>(*live, renderer, volume,
+                                              local ? &local->scheduler : nullptr, a.no_indirect, a.tag());
   const ViewSource views = [&](const scene::Scene& posed) {
-    if (!live) return make_frame_views(posed, choice, a.display, a.view).views;
-    live->pump();
-    if (live->quit() || stop_flag().load()) live_stop = true;
-    const LiveSwitches sw = live->take_switches();
-    if (sw.indirect && a.no_indirect) {
-      std::fprintf(stderr, "%s: I: the run has --no-indirect, its shaders draw no probes\n", a.tag());
-    } else if (sw.indirect) {
-      indirect = !indirect;  // the renderer is idle between frames: swap what it draws with
-      renderer.upload_probes(indirect ? volume : dark);
-      std::fprintf(stderr, "%s: I: indirect light %s\n", a.tag(), indirect ? "on" : "off");
-    }
-    if (sw.schedule && local) {
-      const auto next = local->scheduler.options().mode == probes::ScheduleMode::uniform
-                            ? probes::ScheduleMode::visibility
-                            : probes::ScheduleMode::uniform;
-      local->scheduler.set_mode(next);
-      std::fprintf(stderr, "%s: U: schedule %s\n", a.tag(), probes::schedule_mode_name(next));
-    }
-    if (sw.overlay) {
-      overlay = !overlay;
-      std::fprintf(stderr, "%s: G: probe-grid overlay %s\n", a.tag(), overlay ? "on" : "off");
-    }
-    DisplayArgs d = a.display;
-    d.focal_distance = live->focal_distance();
-    std::vector<scene::View> frame_views = make_frame_views(posed, choice, d, a.view, live->camera()).views;
-    set_probe_overlay(*live, overlay ? &volume : nullptr, frame_views);
-    return frame_views;
+    if (controls) return controls->frame_views(posed, choice, a.display, a.view);
+    return make_frame_views(posed, choice, a.display, a.view).views;
   };
   std::unique_ptr<ProbeSource> probes;
   if (local) {
@@ -391,7 +367,8 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     probes = std::move(remote_probes);
   }
   // Indirect light switched off in the window: no probe updates either (as --no-indirect).
-  SwitchableProbes switchable(*probes, indirect);
+  const bool always = true;
+  SwitchableProbes switchable(*probes, controls ? controls->indirect() : always);
   FrameLoop loop(s, switchable, renderer, views);
   FrameLoopOptions options;
   options.frames = live && !a.frames_given ? std::numeric_limits<int>::max() : a.frames;
@@ -400,7 +377,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   options.fps = a.fps;
   options.every = a.every || live;  // the window is shown every frame; files as asked
   // Ctrl-C: this frame is the last one, written whole; the window's close does the same.
-  options.stop = live ? &live_stop : &stop_flag();
+  options.stop = controls ? &controls->stop() : &stop_flag();
   if (live) options.render_request = live->request(files);
   double present_ms = 0.0;
   options.loop_period = a.loop ? s.animation_duration() : 0.0;
@@ -415,7 +392,8 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   const FrameSink sink = [&](int k, raster::FrameOutput& frame) {
     if (live) {
       present_ms = live->present();
-      if (!files || !(a.every || k + 1 == options.frames || live_stop.load())) return std::vector<fs::path>{};
+      if (!files || !(a.every || k + 1 == options.frames || controls->stop().load()))
+        return std::vector<fs::path>{};
     }
     const std::string tag = a.every ? fmt::format("{:04d}", k) : "";
     queue.push(std::move(frame.views), fmt::format("frame_{:04d}", k), tag);
@@ -427,16 +405,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                    a.connect.c_str(), a.wait_ms,
                    a.baked.empty() ? "direct light only" : ("the baked probes of " + a.baked).c_str());
     print_progress(r, options.frames);
-    if (live) {
-      const metrics::FrameTimings& t = *r.timings;
-      live->set_status(fmt::format(
-          "ddish {} · {} views · probes {:.1f} ms · raster {:.1f} ms · present {:.1f} ms · "
-          "oldest probe {} frames · indirect {} · {}",
-          first.name, r.counts.views,
-          t.stage_ms("tracer_update") + t.stage_ms("probe_update") + t.stage_ms("upload"),
-          raster_ms(t), present_ms, r.counts.oldest_probe_age, indirect ? "on" : "off",
-          local ? probes::schedule_mode_name(local->scheduler.options().mode) : "remote probes"));
-    }
+    if (live) live->set_status(controls->status(first.name, r, present_ms));
   });
   const auto drain_start = std::chrono::steady_clock::now();
   run.result.written = queue.finish();
@@ -493,6 +462,10 @@ int run_render(const RenderArgs& a) {
   const std::size_t done = run.result.counts.size();
   if (run.window_closed && stop_signal() == 0)
     std::fprintf(stderr, "%s: window closed after frame %zu\n", a.tag(), done);
+  else if (run.result.stopped && a.live.window && !a.frames_given)
+    std::fprintf(stderr, "%s: stopped by %s after frame %zu (t=%.3f s); the window writes no files%s\n",
+                 a.tag(), stop_signal() == SIGTERM ? "SIGTERM" : "SIGINT", done,
+                 a.time + double(done - 1) / a.fps, a.timings.empty() ? "" : ", --timings has the frames done");
   else if (run.result.stopped)
     std::fprintf(stderr, "%s: stopped by %s after frame %zu of %d (t=%.3f s): its images are "
                  "written, %s\n",
