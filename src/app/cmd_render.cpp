@@ -103,6 +103,7 @@ struct RenderArgs {
   int frames = 1;
   bool frames_given = false;  // --window without --frames runs until closed, writing no files
   LiveArgs live;
+  bool monitor_given = false;
   bool every = false;
   bool loop = false;
   double fps = 30.0;
@@ -135,11 +136,11 @@ void check(const RenderArgs& a) {
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
   if (a.frames < 1) throw std::invalid_argument("--frames must be at least 1");
-  if (!a.live.window && (a.live.monitor != 0 || a.live.fullscreen || a.live.mailbox || a.live.hold))
+  if (!a.live.window && (a.monitor_given || a.live.fullscreen || a.live.mailbox || a.live.hold))
     throw std::invalid_argument("--monitor, --fullscreen, --mailbox and --hold go with --window");
   if (a.live.hold && !a.frames_given)
     throw std::invalid_argument("--hold keeps the last of --frames N on screen: give --frames");
-  if (a.live.monitor < 0) throw std::invalid_argument("--monitor must be 0 or more");
+  if (a.monitor_given && a.live.monitor < 0) throw std::invalid_argument("--monitor must be 0 or more");
   if (a.live.window && !window::display_server_named())
     throw std::invalid_argument("--window needs a display server, and neither DISPLAY nor "
                                 "WAYLAND_DISPLAY is set; without --window ddish renders to files");
@@ -276,7 +277,9 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                                   s, start.eye, start.forward));
     live = std::make_unique<LiveWindow>(
         a.live, "ddish " + first.name, calibration ? calibration->screen_width : first.layout.width,
-        calibration ? calibration->screen_height : first.layout.height, start, focal);
+        calibration ? calibration->screen_height : first.layout.height,
+        choice.profile && choice.profile->panel ? choice.profile->panel->width : 0,
+        choice.profile && choice.profile->panel ? choice.profile->panel->height : 0, start, focal);
   }
   gpu::Context gpu({.device_index = a.device,
                     .instance_extensions = live ? live->instance_extensions() : std::vector<std::string>{},
@@ -298,9 +301,11 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     live->attach(gpu, first.layout, int(first.size()),
                  calibration ? std::optional(display::lenticular_mapping(*calibration)) : std::nullopt);
     attachment.live = live.get();
+    for (const std::string& m : window::Window::monitors())
+      std::fprintf(stderr, "%s: monitor %s\n", a.tag(), m.c_str());
     std::fprintf(stderr, "%s: window %dx%d on monitor %d: %s %dx%d, %s\n", a.tag(),
                  int(live->window().drawable_size().width), int(live->window().drawable_size().height),
-                 a.live.monitor, calibration ? "lenticular panel image" : "atlas", live->output_width(),
+                 live->window().monitor(), calibration ? "lenticular panel image" : "atlas", live->output_width(),
                  live->output_height(), a.live.mailbox ? "mailbox where offered" : "FIFO");
     const auto& panel = choice.profile ? choice.profile->panel : std::nullopt;
     if (panel && !calibration)
@@ -511,8 +516,10 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
                 "pair, the quilt, or with --calibration the lenticular panel image built on the "
                 "GPU; mouse: left drag orbit, right/middle drag pan, wheel dolly; keys: WASD QE "
                 "fly, I indirect light, U schedule, G probe-grid overlay, Esc quit");
-  cmd->add_option("--monitor", a.live.monitor, "with --window: the monitor (SDL display index)")
-      ->capture_default_str();
+  cmd->add_option("--monitor", a.live.monitor,
+                  "with --window: the monitor (SDL display index, listed in the run log); default: "
+                  "the monitor of the profile's panel resolution (a Looking Glass), else 0")
+      ->each([&a](const std::string&) { a.monitor_given = true; });
   cmd->add_flag("--fullscreen", a.live.fullscreen,
                 "with --window: borderless fullscreen at the monitor's own resolution (the panel's "
                 "native resolution on a Looking Glass)");
