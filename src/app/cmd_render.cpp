@@ -129,7 +129,7 @@ struct RenderArgs {
 };
 
 void check(const RenderArgs& a) {
-  if (a.scene.empty()) throw std::invalid_argument("scene is required: a .gltf or .glb file");
+  if (a.scene.empty()) throw std::invalid_argument("scene is required (see ddish --help)");  // as CLI11 says it
   check_probe_options(a.probe);
   check_schedule_options(a.schedule);
   sky_radiance(a.lighting);
