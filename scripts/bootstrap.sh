@@ -15,6 +15,8 @@ PACKAGES=(
   libembree-dev libtbb-dev
   # probe stream (src/net): ZeroMQ with CURVE, its C++ binding
   libzmq3-dev cppzmq-dev
+  # headset path (src/xr, tests/xr_runtime): OpenXR loader and headers, Khronos core validation layer
+  libopenxr-dev libopenxr-loader1 openxr-layer-corevalidation
   # tests, plots
   libgtest-dev libgmock-dev gnuplot-nox python3
   # fuzzing (scripts/fuzz.sh, every tests/fuzz target): clang 14 and its libFuzzer, ASan and UBSan runtimes

@@ -528,8 +528,9 @@ def main():
     here = os.path.dirname(os.path.abspath(__file__))
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
+    import feature_scenes  # the glTF feature scenes of issue 18 (they import this module)
     for make in (cornell_box, cornell_spot, two_rooms, cornell_animated, cornell_light, open_sphere,
-                 photometric_lamp, instanced_boxes, unlit_panel, clamped_texture):
+                 photometric_lamp, instanced_boxes, unlit_panel, clamped_texture) + feature_scenes.SCENES:
         make(out_dir)
 
 

@@ -1,9 +1,11 @@
 // Forward pass, fragment stage (the body of forward_sh*.frag): the glTF metallic-roughness BSDF exactly as the path tracer
 // evaluates it (src/trace/bsdf.cpp): GGX with alpha = roughness^2 (floored at 1e-3), the
-// height-correlated Smith visibility, Schlick Fresnel with F0 = mix(0.04, base, metallic), and
-// the diffuse base scaled by (1 - E(n.v)) (1 - E(n.l)) / (1 - E_avg), E being the albedo table
-// of the 0.04 dielectric layer (uploaded from trace::DielectricSpecularAlbedo and interpolated
-// the same way). Direct light comes from punctual lights with shadow maps; indirect light from
+// height-correlated Smith visibility, Schlick Fresnel with F0 = mix(F0d, base, metallic) (F0d
+// 0.04 unless KHR_materials_ior / KHR_materials_specular change it, with the layer's weight),
+// and the diffuse base scaled by (1 - E(n.v)) (1 - E(n.l)) / (1 - E_avg), E being the albedo of
+// the dielectric layer (from trace::DielectricSpecularAlbedo's tables, interpolated the same
+// way). Vertex colours multiply the base colour; each texture slot reads its UV set through its
+// KHR_texture_transform; BLEND materials write their alpha for the transparent pass. Direct light comes from punctual lights with shadow maps; indirect light from
 // the SH probes (probe_lighting.glsl); emission is added; the environment is the clear colour.
 //
 // Not compiled on its own: forward_sh1..4.frag set PROBE_SH_ORDER (a compile-time constant of
@@ -22,11 +24,13 @@ layout(constant_id = 4) const bool kProbes = true;
 layout(constant_id = 5) const bool kEmission = true;
 
 layout(set = 0, binding = 4) uniform sampler2DArrayShadow shadow_maps;
-// E(mu, roughness) nodes: 32 rows (roughness) of 32 values (cbrt(mu)), then 32 E_avg values.
+// E(mu, roughness) nodes: 32 rows (roughness) of 32 values (cbrt(mu)), then 32 E_avg values;
+// then the same for dE/dF0 (kSlopeTable on), so a layer of any F0 has E + (F0 - 0.04) dE/dF0.
 layout(set = 0, binding = 5, std430) readonly buffer AlbedoTable { float albedo_table[]; };
 
 const int kCosNodes = 32;
 const int kRoughnessNodes = 32;
+const int kSlopeTable = kCosNodes * kRoughnessNodes + kRoughnessNodes;  // offset of dE/dF0
 const float kMinAlpha = 1e-3;
 const float kPi = 3.14159265358979;
 const float kSpecularAaKappa = 0.18;  // the largest alpha^2 the filter adds
@@ -35,7 +39,11 @@ layout(set = MATERIAL_SET, binding = 0) uniform MaterialData {
   vec4 base_color;
   vec4 emission;   // rgb: emissiveFactor × strength; w: 1 = KHR_materials_unlit
   vec4 params;     // x: metallic, y: roughness, z: normal scale, w: occlusion strength
-  vec4 alpha;      // x: cutoff, y: 1 = MASK, z: bit set of bound textures
+  vec4 alpha;      // x: cutoff, y: 1 = MASK, z: bit set of bound textures, w: 1 = BLEND
+  // Slot s (base colour, metallic-roughness, normal, occlusion, emissive): rows 2s, 2s+1 of its
+  // KHR_texture_transform; row 2s's w is the UV set (raster/gpu_types.h).
+  vec4 uv_rows[10];
+  vec4 dielectric;  // rgb: the dielectric layer's F0, w: its weight (KHR_materials_ior, _specular)
 } material;
 layout(set = MATERIAL_SET, binding = 1) uniform sampler2D base_color_tex;
 layout(set = MATERIAL_SET, binding = 2) uniform sampler2D metallic_roughness_tex;
@@ -45,13 +53,23 @@ layout(set = MATERIAL_SET, binding = 5) uniform sampler2D emissive_tex;
 
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
-layout(location = 2) in vec2 in_uv;
+layout(location = 2) in vec4 in_uv;  // xy: TEXCOORD_0, zw: TEXCOORD_1
 layout(location = 3) in vec4 in_tangent;
 layout(location = 4) flat in uint in_view;  // which views[] entry (forward_vertex.glsl)
+layout(location = 5) in vec4 in_color;      // COLOR_0
 
 layout(location = 0) out vec4 out_color;
 
 bool has_texture(uint bit) { return kTextures && (uint(material.alpha.z) & bit) != 0u; }
+
+// The coordinate texture slot s reads: its UV set, then its KHR_texture_transform (as the path
+// tracer's trace::slot_uv).
+vec2 slot_uv(int s) {
+  const vec4 r0 = material.uv_rows[2 * s];
+  const vec4 r1 = material.uv_rows[2 * s + 1];
+  const vec3 uv = vec3(r0.w > 0.5 ? in_uv.zw : in_uv.xy, 1.0);
+  return vec2(dot(r0.xyz, uv), dot(r1.xyz, uv));
+}
 
 // The table's roughness coordinate: uniform in log(alpha) from kMinAlpha (0) to 1 (1).
 float roughness_coordinate(float roughness) {
@@ -66,19 +84,28 @@ void locate(float v, int nodes, out int i, out float t) {
   t = f - float(i);
 }
 
-float albedo_row(int row, int c, float tc) {
-  const float e0 = albedo_table[row * kCosNodes + c];
-  return e0 + tc * (albedo_table[row * kCosNodes + c + 1] - e0);
+float albedo_row(int table, int row, int c, float tc) {
+  const float e0 = albedo_table[table + row * kCosNodes + c];
+  return e0 + tc * (albedo_table[table + row * kCosNodes + c + 1] - e0);
 }
 
-// E(mu) at the slice (r, tr) of the table.
-float layer_albedo(int r, float tr, float mu) {
+float table_at(int table, int r, float tr, float mu) {
   int c;
   float tc;
   locate(pow(clamp(mu, 0.0, 1.0), 1.0 / 3.0), kCosNodes, c, tc);
-  const float e0 = albedo_row(r, c, tc);
-  const float e1 = albedo_row(r + 1, c, tc);
+  const float e0 = albedo_row(table, r, c, tc);
+  const float e1 = albedo_row(table, r + 1, c, tc);
   return e0 + tr * (e1 - e0);
+}
+
+// E(mu) of the 0.04 layer at the slice (r, tr) of the table.
+float layer_albedo(int r, float tr, float mu) { return table_at(0, r, tr, mu); }
+
+// The material's dielectric layer per channel: weight * (E + (F0 - 0.04) dE/dF0), as
+// trace::Bsdf::layer.
+vec3 material_layer(int r, float tr, float mu) {
+  return material.dielectric.w *
+         (table_at(0, r, tr, mu) + (material.dielectric.rgb - 0.04) * table_at(kSlopeTable, r, tr, mu));
 }
 
 float smith_s(float alpha2, float c) { return sqrt(c * c + alpha2 * max(0.0, 1.0 - c * c)); }
@@ -139,14 +166,15 @@ void main() {
   const vec3 dndx = dFdx(normalize(in_normal));
   const vec3 dndy = dFdy(normalize(in_normal));
   const float normal_variance = 0.15915494 * (dot(dndx, dndx) + dot(dndy, dndy));
-  vec4 base = material.base_color;
-  if (has_texture(1u)) base *= texture(base_color_tex, in_uv);
+  // COLOR_0 multiplies the base colour factor and texture (glTF), as in trace/surface.cpp.
+  vec4 base = material.base_color * in_color;
+  if (has_texture(1u)) base *= texture(base_color_tex, slot_uv(0));
   if (material.alpha.y > 0.5 && base.a < material.alpha.x) discard;
 
   float metallic = material.params.x;
   float roughness = material.params.y;
   if (has_texture(2u)) {
-    const vec4 mr = texture(metallic_roughness_tex, in_uv);
+    const vec4 mr = texture(metallic_roughness_tex, slot_uv(1));
     roughness *= mr.g;
     metallic *= mr.b;
   }
@@ -155,8 +183,11 @@ void main() {
   const vec3 albedo = clamp(base.rgb, 0.0, 1.0);
   // KHR_materials_unlit: the base colour, no light, as the path tracer shows it
   // (trace/surface.cpp); single-sided back faces are culled before they get here.
+  // BLEND (the transparent pass, raster/forward_pass.h) writes the base colour's alpha for the
+  // blend unit; every other mode covers what is behind.
+  const float coverage = material.alpha.w > 0.5 ? clamp(base.a, 0.0, 1.0) : 1.0;
   if (material.emission.w > 0.5) {
-    out_color = vec4(albedo, 1.0);
+    out_color = vec4(albedo, coverage);
     return;
   }
 
@@ -169,22 +200,28 @@ void main() {
     if (dot(t, t) > 1e-20) {
       t = normalize(t);
       const vec3 b = cross(n, t) * (in_tangent.w < 0.0 ? -1.0 : 1.0) * (gl_FrontFacing ? 1.0 : -1.0);
-      const vec3 c = texture(normal_tex, in_uv).xyz * 2.0 - 1.0;
+      const vec3 c = texture(normal_tex, slot_uv(2)).xyz * 2.0 - 1.0;
       n = normalize(t * c.x * material.params.z + b * c.y * material.params.z + n * c.z);
     }
   }
   const vec3 v = normalize(views[in_view].eye.xyz - in_world);
   const float nov = dot(n, v);
   const float cos_v = clamp(nov, 0.0, 1.0);
-  const vec3 f0 = mix(vec3(0.04), albedo, metallic);
 
   int r;
   float tr;
   locate(roughness_coordinate(roughness), kRoughnessNodes, r, tr);
-  const float e_avg_0 = albedo_table[kCosNodes * kRoughnessNodes + r];
-  const float e_avg = e_avg_0 + tr * (albedo_table[kCosNodes * kRoughnessNodes + r + 1] - e_avg_0);
-  const float e_v = layer_albedo(r, tr, cos_v);
+  const int avg = kCosNodes * kRoughnessNodes;
+  const float e_avg_0 = mix(albedo_table[avg + r], albedo_table[avg + r + 1], tr);
+  const float s_avg_0 = mix(albedo_table[kSlopeTable + avg + r], albedo_table[kSlopeTable + avg + r + 1], tr);
+  const vec3 e_avg = material.dielectric.w * (e_avg_0 + (material.dielectric.rgb - 0.04) * s_avg_0);
+  const vec3 e_v = material_layer(r, tr, cos_v);
   const vec3 diffuse_lobe = (1.0 - metallic) * albedo / (kPi * (1.0 - e_avg)) * (1.0 - e_v);
+  // The specular lobe's Fresnel f0 + f90_minus_f0 (1 - v.h)^5 (trace/bsdf.cpp): the dielectric
+  // layer's Schlick term weighted by (1 - metallic) * weight, plus the metal's.
+  const float dw = (1.0 - metallic) * material.dielectric.w;
+  const vec3 spec_f0 = dw * material.dielectric.rgb + metallic * albedo;
+  const vec3 spec_f90_minus_f0 = dw * (1.0 - material.dielectric.rgb) + metallic * (1.0 - albedo);
   const float alpha = max(roughness * roughness, kMinAlpha);
   // Geometric specular antialiasing for the punctual lights (Tokuyoshi and Kaplanyan 2021,
   // "Stable Geometric Specular Antialiasing with Projected-Space NDF Filtering"): the shader runs
@@ -236,8 +273,8 @@ void main() {
       const float d_ggx = noh > 0.0 ? 1.0 / (kPi * alpha2 * tt * tt) : 0.0;
       const float vis = 1.0 / (2.0 * (smith_s(alpha2, nov) * nol + smith_s(alpha2, nol) * nov));
       const float m = 1.0 - clamp(voh, 0.0, 1.0);
-      const vec3 fresnel = f0 + (1.0 - f0) * (m * m * m * m * m);
-      const vec3 f = diffuse_lobe * (1.0 - layer_albedo(r, tr, nol)) + fresnel * (d_ggx * vis);
+      const vec3 fresnel = spec_f0 + spec_f90_minus_f0 * (m * m * m * m * m);
+      const vec3 f = diffuse_lobe * (1.0 - material_layer(r, tr, nol)) + fresnel * (d_ggx * vis);
       color += f * radiance * nol * shadow(light, in_world, n, wi);
     }
   }
@@ -245,20 +282,26 @@ void main() {
   if (kProbes) {
     float occlusion = 1.0;
     if (has_texture(8u))
-      occlusion = 1.0 + material.params.w * (texture(occlusion_tex, in_uv).r - 1.0);
+      occlusion = 1.0 + material.params.w * (texture(occlusion_tex, slot_uv(3)).r - 1.0);
     const float nv = max(cos_v, 1e-4);
-    color += albedo * (1.0 - metallic) * brdf_diffuse_scale(nv, roughness) / kPi *
-             probe_irradiance(in_world, n) * occlusion;
+    // 1 - E(n.v) of the material's layer: the 0.04 layer's from the BRDF texture, corrected by
+    // the difference to the material's (zero for glTF's default dielectric).
+    const vec3 diffuse_scale = brdf_diffuse_scale(nv, roughness) + layer_albedo(r, tr, nv) -
+                               material_layer(r, tr, nv);
+    color += albedo * (1.0 - metallic) * diffuse_scale / kPi * probe_irradiance(in_world, n) * occlusion;
     if (kSpecularProbes) {
+      // The split sum of f0 + f90_minus_f0 w: f0 (dfg.x + dfg.y) + f90_minus_f0 dfg.y, which is
+      // F0 dfg.x + dfg.y for Schlick.
       const vec2 dfg = brdf_dfg(nv, roughness);
-      color += (f0 * dfg.x + dfg.y) * probe_specular(in_world, reflect(-v, n), roughness);
+      color += (spec_f0 * (dfg.x + dfg.y) + spec_f90_minus_f0 * dfg.y) *
+               probe_specular(in_world, reflect(-v, n), roughness);
     }
   }
 
   if (kEmission && gl_FrontFacing) {
     vec3 e = material.emission.rgb;
-    if (has_texture(16u)) e *= texture(emissive_tex, in_uv).rgb;
+    if (has_texture(16u)) e *= texture(emissive_tex, slot_uv(4)).rgb;
     color += e;
   }
-  out_color = vec4(color, 1.0);
+  out_color = vec4(color, coverage);
 }

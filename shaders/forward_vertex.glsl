@@ -19,12 +19,15 @@ layout(location = 0) in vec3 in_position;
 layout(location = 1) in vec3 in_normal;
 layout(location = 2) in vec2 in_uv;
 layout(location = 3) in vec4 in_tangent;
+layout(location = 4) in vec2 in_uv1;
+layout(location = 5) in vec4 in_color;  // COLOR_0 (white without vertex colours)
 
 layout(location = 0) out vec3 out_world;
 layout(location = 1) out vec3 out_normal;
-layout(location = 2) out vec2 out_uv;
+layout(location = 2) out vec4 out_uv;  // xy: TEXCOORD_0, zw: TEXCOORD_1
 layout(location = 3) out vec4 out_tangent;
 layout(location = 4) flat out uint out_view;
+layout(location = 5) out vec4 out_color;
 
 void main() {
 #ifdef FORWARD_LAYERED
@@ -41,7 +44,8 @@ void main() {
                                   pc.normal_matrix[2].xyz);
   out_normal = normal_matrix * in_normal;
   out_tangent = vec4(mat3(pc.model) * in_tangent.xyz, in_tangent.w * pc.normal_matrix[0].w);
-  out_uv = in_uv;
+  out_uv = vec4(in_uv, in_uv1);
+  out_color = in_color;
   out_view = view;
   gl_Position = views[view].view_proj * world;
 }

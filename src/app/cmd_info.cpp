@@ -116,6 +116,10 @@ nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
                    {"blended_materials", f.blended_materials},
                    {"double_sided_materials", f.double_sided_materials},
                    {"emissive_materials", f.emissive_materials},
+                   {"second_uv_materials", f.second_uv_materials},
+                   {"texture_transform_materials", f.texture_transform_materials},
+                   {"dielectric_materials", f.dielectric_materials},
+                   {"vertex_colored_meshes", f.vertex_colored_meshes},
                    {"directional_lights", f.directional_lights},
                    {"point_lights", f.point_lights},
                    {"spot_lights", f.spot_lights},
@@ -175,6 +179,11 @@ void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scen
       "double-sided {}, emissive {} (materials used)\n",
       f.glossy_materials, f.metal_materials, f.textured_materials, f.normal_mapped_materials,
       f.masked_materials, f.blended_materials, f.double_sided_materials, f.emissive_materials);
+  fmt::print(
+      "  TEXCOORD_1 {}, texture transforms {}, ior/specular {} (materials used); vertex colours {} "
+      "(meshes)\n",
+      f.second_uv_materials, f.texture_transform_materials, f.dielectric_materials,
+      f.vertex_colored_meshes);
   fmt::print("left out\n");
   for (const std::string& line : left_out_lines(plan, "  ")) fmt::print("{}\n", line);
   for (const auto& w : s.warnings) fmt::print("warning: {}\n", w);

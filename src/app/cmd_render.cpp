@@ -61,12 +61,14 @@
 #include "app/lighting_options.h"
 #include "app/output_queue.h"
 #include "app/plan_report.h"
+#include "app/probe_setup.h"
 #include "app/probe_options.h"
 #include "app/remote_probes.h"
 #include "app/render_timings.h"
 #include "app/scene_identity.h"
 #include "app/schedule_options.h"
 #include "app/view_options.h"
+#include "app/warmup_options.h"
 #include "display/calibration.h"
 #include "display/lenticular.h"
 #include "gpu/context.h"
@@ -125,6 +127,7 @@ struct RenderArgs {
   int frame_wait_ms = 0;  // later frames' wait for the server's next frame
   std::string curve_server_key;  // the server's .pub
   std::string curve_secret;      // this client's .key
+  WarmupOptions warmup;  // render: on by default; view: its probes come from the server
   const char* tag() const { return connect.empty() ? "render" : "view"; }
 };
 
@@ -132,6 +135,7 @@ void check(const RenderArgs& a) {
   if (a.scene.empty()) throw std::invalid_argument("scene is required (see ddish --help)");  // as CLI11 says it
   check_probe_options(a.probe);
   check_schedule_options(a.schedule);
+  check_warmup_options(a.warmup);
   sky_radiance(a.lighting);
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
@@ -218,34 +222,14 @@ struct GpuRun {
   std::shared_ptr<const gpu::ValidationLog> log;
 };
 
-// The in-process probe half of `ddish render`: path tracer, probe tracer, scheduler.
-struct InProcessParts {
-  trace::Tracer tracer;
-  probes::TracerSource source;
-  probes::ProbeTracer probe_tracer;
-  probes::Scheduler scheduler;
-  double budget_ms;
-  InProcessParts(const RenderArgs& a, const scene::Scene& s, const trace::PathOptions& path, double budget)
-      : tracer(s, path),
-        source(tracer),
-        probe_tracer(source, update_options(a.probe)),
-        scheduler(scheduler_options(a.schedule, a.probe, budget)),
-        budget_ms(budget) {}
-};
-
-// `ddish view`'s starting probes: the --probes volume (same grid and order as the scene's
-// placement, or an error), else none (direct light only until a server answers).
-probes::ProbeVolume starting_volume(const RenderArgs& a, const Placement& placement) {
-  if (a.baked.empty()) return probes::ProbeVolume(placement.grid, a.probe.sh_order);
-  const probes::VolumeFile file = probes::read_volume_file(a.baked);
-  probes::ProbeVolume volume = file.to_volume();
-  if (volume.grid().counts() != placement.grid.counts() || volume.sh_order() != a.probe.sh_order)
-    throw std::invalid_argument(fmt::format(
-        "--probes {}: grid {}x{}x{} L{}, but this scene's probes are {}x{}x{} L{} (same --grid and --sh-order as the server)",
-        a.baked, volume.grid().counts().x, volume.grid().counts().y, volume.grid().counts().z,
-        volume.sh_order(), placement.grid.counts().x, placement.grid.counts().y,
-        placement.grid.counts().z, a.probe.sh_order));
-  return volume;
+StreamArgs stream_args(const RenderArgs& a) {
+  return {.connect = a.connect,
+          .baked = a.baked,
+          .wait_ms = a.wait_ms,
+          .stale_ms = a.stale_ms,
+          .frame_wait_ms = a.frame_wait_ms,
+          .curve_server_key = a.curve_server_key,
+          .curve_secret = a.curve_secret};
 }
 
 // Everything that holds Vulkan objects lives in here, so that by the time it returns the device
@@ -256,15 +240,11 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                      const std::optional<display::Calibration>& calibration) {
   const bool remote = !a.connect.empty();
   std::unique_ptr<InProcessParts> local;
-  if (!remote) {
-    trace::PathOptions path_options;
-    path_options.max_bounces = a.probe.bounces;
-    local = std::make_unique<InProcessParts>(
-        a, s, path_options,
-        frame_budget_ms(a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>()));
-  }
-  probes::ProbeVolume volume =
-      remote ? starting_volume(a, placement) : probes::ProbeVolume(placement.grid, a.probe.sh_order);
+  if (!remote)
+    local = make_in_process(a.probe, a.schedule, s,
+                            frame_budget_ms(a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>()));
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.baked, placement)
+                                      : probes::ProbeVolume(placement.grid, a.probe.sh_order);
 
   GpuRun run;
   // The live window opens before the GPU context: its surface extensions go into the instance.
@@ -349,28 +329,8 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     if (controls) return controls->frame_views(posed, choice, a.display, a.view);
     return make_frame_views(posed, choice, a.display, a.view).views;
   };
-  std::unique_ptr<ProbeSource> probes;
-  if (local) {
-    probes = std::make_unique<InProcessProbes>(
-        local->tracer, local->probe_tracer, local->scheduler,
-        [&](const probes::FramePlan& plan) {
-          return frame_update_options(a.schedule, a.probe, plan.samples, plan.hysteresis);
-        },
-        volume);
-  } else {
-    net::ClientOptions co;
-    co.connect = a.connect;
-    co.stale_ms = a.stale_ms;
-    co.log = [](const std::string& line) { std::fprintf(stderr, "view: %s\n", line.c_str()); };
-    if (!a.curve_secret.empty()) {
-      const net::CurveKeyPair mine = net::read_secret_key(a.curve_secret);
-      co.curve = net::CurveClientKeys{net::read_public_key(a.curve_server_key), mine.public_z85, mine.secret_z85};
-    }
-    auto remote_probes = std::make_unique<RemoteProbes>(co, volume, identity, a.wait_ms, a.frame_wait_ms);
-    std::fprintf(stderr, "view: probes from %s (scene identity %016llx)\n", a.connect.c_str(),
-                 static_cast<unsigned long long>(identity));
-    probes = std::move(remote_probes);
-  }
+  const std::unique_ptr<ProbeSource> probes =
+      make_probe_source(local.get(), a.probe, a.schedule, stream_args(a), volume, identity, a.tag());
   // Indirect light switched off in the window: no probe updates either (as --no-indirect).
   const bool always = true;
   SwitchableProbes switchable(*probes, controls ? controls->indirect() : always);
@@ -386,6 +346,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   if (live) options.render_request = live->request(files);
   double present_ms = 0.0;
   options.loop_period = a.loop ? s.animation_duration() : 0.0;
+  options.warmup = a.warmup;
   // Without indirect light nothing reads the probes: tracing them would only cost time (and
   // would make a direct-light-only run's frame time meaningless as a baseline).
   options.update_probes = !a.no_indirect;
@@ -405,6 +366,8 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     return std::vector<fs::path>{};
   };
   run.result = loop.run(options, sink, [&](const FrameReport& r) {
+    if (r.warmup && r.warmup->rounds > 0)
+      std::fprintf(stderr, "%s: %s\n", a.tag(), describe_warmup(*r.warmup, a.warmup).c_str());
     if (remote && r.frame == 0 && r.counts.stream && !r.counts.stream->synced && !a.no_indirect)
       std::fprintf(stderr, "view: no probe server at %s after %d ms: rendering with %s until it answers\n",
                    a.connect.c_str(), a.wait_ms,
@@ -562,6 +525,7 @@ Action make_render(CLI::App& root) {
   add_probe_options(*cmd, a->probe);
   add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
+  add_warmup_options(*cmd, a->warmup);
   return [a]() { return run_render(*a); };
 }
 

@@ -1,13 +1,15 @@
 // ddish serve SCENE [--bind tcp://127.0.0.1:PORT] [--insecure] [--fps F] [--frames N]
 //                   [--seconds S] [--time T] [--encoding fp16|shared-exponent|compact] [--zstd]
 //                   [--delta-threshold R] [--delta-floor A] [--client-timeout-ms MS]
-//                   [--curve-secret FILE --allow-keys DIR]
+//                   [--client-budget-ms MS] [--curve-secret FILE --allow-keys DIR]
 //                   [--timings FILE.json] [probe options] [schedule options]
 //
 // The probe server: the frame loop's in-process probe source (probe_source.h) with the probe
 // stream's publisher (net/) as its only consumer, and no rasterizer. Each tick (--fps) it poses
 // the scene, plans the probes from the union of its clients' views (each client's views ranked
-// like a display's) within --budget-ms, runs the one probe update, and publishes the delta of
+// like a display's) within --budget-ms (or --client-budget-ms per connected client, so that each
+// client's views converge as fast as if it were alone: tests/probes/test_scheduler_clients.cpp),
+// runs the one probe update, and publishes the delta of
 // what changed (net/published_probes.h: --delta-threshold); between ticks it answers snapshot
 // requests and takes the clients' views. A client silent for --client-timeout-ms stops counting.
 // With no client it idles (publishes empty deltas as heartbeats, traces nothing); --frames N
@@ -18,6 +20,8 @@
 // --curve-secret (the server's .key of `ddish keys`) and --allow-keys (a folder of clients' .pub
 // files) both sockets speak CurveZMQ and a ZAP handler refuses every client key not listed.
 #include <chrono>
+#include <cmath>
+#include <algorithm>
 #include <csignal>
 #include <cstdint>
 #include <cstdio>
@@ -71,6 +75,7 @@ struct ServeArgs {
   float threshold = 0.01f;
   float floor = 0.0f;
   int client_timeout_ms = 2000;
+  double client_budget_ms = 0.0;  // > 0: the tick's budget is this x the connected clients
   std::string timings;
   std::string curve_secret;
   std::string allow_keys;
@@ -86,6 +91,8 @@ void check(const ServeArgs& a) {
   if (!(a.threshold >= 0.0f) || !(a.floor >= 0.0f))
     throw std::invalid_argument("--delta-threshold and --delta-floor must be >= 0");
   if (a.client_timeout_ms < 1) throw std::invalid_argument("--client-timeout-ms must be >= 1");
+  if (!(a.client_budget_ms >= 0.0) || !std::isfinite(a.client_budget_ms))
+    throw std::invalid_argument("--client-budget-ms must be a finite number >= 0");
   if (a.curve_secret.empty() != a.allow_keys.empty())
     throw std::invalid_argument("--curve-secret and --allow-keys go together");
   const net::Endpoint e = net::parse_endpoint(a.bind);
@@ -100,6 +107,7 @@ struct TickRecord {
   double probe_ms = 0.0;
   double tick_ms = 0.0;
   double busy_ms = 0.0;  // the tick's work: update, publish and the requests answered (not idling)
+  double budget_ms = 0.0;  // the scheduler's budget for this tick's update (0: none)
   std::uint32_t traced = 0;
   net::PublishStats published;
   std::size_t clients = 0;
@@ -117,6 +125,7 @@ void write_timings(const std::string& path, const std::vector<TickRecord>& ticks
                     {"probe_ms", t.probe_ms},
                     {"tick_ms", t.tick_ms},
                     {"busy_ms", t.busy_ms},
+                    {"budget_ms", t.budget_ms},
                     {"probes_traced", t.traced},
                     {"probes_sent", t.published.sent},
                     {"probes_deactivated", t.published.deactivated},
@@ -213,6 +222,14 @@ int run_serve(const ServeArgs& a) {
       metrics::FrameTimings timings;
       FrameCounts counts;
       scene_time = a.time + double(updates) / a.fps;
+      if (a.client_budget_ms > 0.0) {
+        // One client's budget per client, within the whole tick's --budget-ms where given.
+        rec.budget_ms = a.client_budget_ms * double(std::max<std::size_t>(rec.clients, 1));
+        if (budget_ms > 0.0) rec.budget_ms = std::min(rec.budget_ms, budget_ms);
+        probes_source.set_frame_budget(rec.budget_ms);
+      } else {
+        rec.budget_ms = budget_ms;
+      }
       std::vector<int> moved = s.pose(scene_time);
       probes_source.posed(s, moved, timings);
       const ProbeStep step = probes_source.update(server.views(), true, timings, counts);
@@ -268,6 +285,10 @@ Action make_serve(CLI::App& root) {
   cmd->add_option("--delta-floor", a->floor, "... or more than this absolute amount, whichever is larger")
       ->capture_default_str();
   cmd->add_option("--client-timeout-ms", a->client_timeout_ms, "a client silent for this long stops counting")
+      ->capture_default_str();
+  cmd->add_option("--client-budget-ms", a->client_budget_ms,
+                  "probe-update budget per connected client (visibility schedule): the tick's budget is MS x "
+                  "clients, at most --budget-ms; 0: --budget-ms alone")
       ->capture_default_str();
   cmd->add_option("--timings", a->timings, "write a per-tick record as JSON here");
   cmd->add_option("--curve-secret", a->curve_secret, "the server's secret key (ddish keys): CurveZMQ on")

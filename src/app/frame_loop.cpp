@@ -47,7 +47,22 @@ void count_probes(const probes::ProbeVolume& volume, FrameCounts& counts) {
 FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
                                const std::function<void(const FrameReport&)>& progress) {
   FrameLoopResult result;
+  if (o.warmup.enabled() && o.update_probes) {
+    metrics::FrameTimings ignored;  // the warm-up is no frame's stage
+    const double t0 = o.loop_period > 0.0 ? std::fmod(o.time, o.loop_period) : o.time;
+    probes_.posed(scene_, scene_.pose(t0), ignored);
+    result.warmup = probes_.warm_up(o.warmup);
+    if (!result.warmup.changed.empty()) renderer_.upload_probes(probes_.volume(), result.warmup.changed);
+  }
   for (int k = 0; k < o.frames; ++k) {
+    if (o.pacer) {
+      const FrameStart start = o.pacer(k);
+      if (start.end) {
+        result.paced_out = true;
+        break;
+      }
+      if (start.budget_ms) probes_.set_frame_budget(*start.budget_ms);
+    }
     metrics::FrameTimings timings;
     timings.frame = k;
     const double clock = o.time + double(k) / o.fps;
@@ -98,6 +113,7 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
     result.timings.add(timings);
     result.counts.push_back(report.counts);
     report.timings = &result.timings.frames().back();
+    if (k == 0) report.warmup = &result.warmup;
     if (progress) progress(report);
     if (stopping) {
       result.stopped = k + 1 < o.frames;

@@ -24,6 +24,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,15 @@ class Tracer;
 
 namespace ddish::app {
 
+// What a view source with a clock of its own says as a frame starts: OpenXR's xrWaitFrame
+// blocks until the frame is due and gives its display period, which becomes the frame's budget
+// (the live window's vsync could do the same). The pacer's own wait is not a stage of the frame.
+struct FrameStart {
+  bool end = false;                 // no frame: the loop ends before this one (the session ended)
+  std::optional<double> budget_ms;  // this frame's whole budget for the probe scheduler
+};
+using FramePacer = std::function<FrameStart(int frame)>;
+
 struct FrameLoopOptions {
   int frames = 1;
   double time = 0.0;  // t of frame 0, seconds
@@ -70,6 +80,11 @@ struct FrameLoopOptions {
   // Handed to the renderer every frame: a GPU sink (the window's swapchain, OpenXR's) records
   // its copies after each batch and may leave the pixels on the GPU (raster/render_request.h).
   raster::RenderRequest render_request;
+  // Set: called before each frame (before the scene is posed); `frames` is then the most frames.
+  FramePacer pacer;
+  // Before the first frame (and the first pacer call: OpenXR's time between READY and the
+  // first frame), the probe source's warm-up; not a stage of any frame. Off: max_ms = 0.
+  WarmupOptions warmup{.samples = 0, .max_ms = 0.0};
 };
 
 struct FrameReport {
@@ -77,6 +92,7 @@ struct FrameReport {
   double t = 0.0;
   FrameCounts counts;
   const metrics::FrameTimings* timings = nullptr;
+  const WarmupReport* warmup = nullptr;  // frame 0: the warm-up before it (rounds 0: none ran)
 };
 
 struct FrameLoopResult {
@@ -84,6 +100,8 @@ struct FrameLoopResult {
   std::vector<FrameCounts> counts;  // one per frame
   std::vector<std::filesystem::path> written;
   bool stopped = false;  // ended early by FrameLoopOptions::stop; counts.size() frames were done
+  WarmupReport warmup;  // rounds == 0: none ran
+  bool paced_out = false;  // ended by the pacer (FrameStart::end) before `frames` frames
 };
 
 // The views of a frame from the scene as posed (a camera node may be animated).

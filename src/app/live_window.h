@@ -125,6 +125,10 @@ class SwitchableProbes final : public ProbeSource {
                 bool enabled, FrameCounts& counts) override {
     inner_.finished(frame, timings, step, enabled && on_, counts);
   }
+  void set_frame_budget(double budget_ms) override { inner_.set_frame_budget(budget_ms); }
+  WarmupReport warm_up(const WarmupOptions& options) override {
+    return on_ ? inner_.warm_up(options) : WarmupReport{};
+  }
 
  private:
   ProbeSource& inner_;

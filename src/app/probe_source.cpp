@@ -1,5 +1,8 @@
 #include "app/probe_source.h"
 
+#include <algorithm>
+#include <chrono>
+
 #include "probes/probe_volume.h"
 #include "scene/scene.h"
 #include "trace/tracer.h"
@@ -72,6 +75,47 @@ void InProcessProbes::finished(int frame, const metrics::FrameTimings& timings,
   for (const metrics::StageTime& s : timings.stages) stages.push_back({s.name, s.ms});
   counts.schedule =
       probes::make_frame_record(frame, step.plan, step.update, std::move(stages), scheduler_.budget());
+}
+
+WarmupReport InProcessProbes::warm_up(const WarmupOptions& options) {
+  WarmupReport report;
+  if (!options.enabled()) return report;
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  const auto ms_since = [](clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(clock::now() - t).count();
+  };
+  // The plan of a frame with no budget: every active probe at S samples with alpha.
+  probes::FramePlan plan;
+  plan.samples = scheduler_.options().samples;
+  plan.hysteresis = scheduler_.options().hysteresis;
+  plan.mode = scheduler_.options().mode;
+  probe_tracer_.set_options(update_options_(plan));
+  std::vector<std::uint32_t> traced;
+  double last_round_ms = 0.0;
+  while (report.samples_per_probe < options.samples) {
+    if (report.rounds > 0 && ms_since(start) + last_round_ms > options.max_ms) {
+      report.bounded = true;
+      break;
+    }
+    std::vector<std::uint32_t> active;
+    for (std::uint32_t i = 0; i < volume_.probe_count(); ++i)
+      if (volume_.state(i).active()) active.push_back(i);
+    if (active.empty()) break;
+    const auto round = clock::now();
+    probe_tracer_.update(volume_, active);
+    last_round_ms = ms_since(round);
+    ++report.rounds;
+    report.samples_per_probe += plan.samples;
+    std::vector<std::uint32_t> merged;
+    std::set_union(traced.begin(), traced.end(), active.begin(), active.end(), std::back_inserter(merged));
+    traced = std::move(merged);
+  }
+  report.changed = changed_probes(traced);
+  for (std::uint32_t i = 0; i < volume_.probe_count(); ++i)
+    if (volume_.state(i).active()) ++report.probes;
+  report.ms = ms_since(start);
+  return report;
 }
 
 }  // namespace ddish::app

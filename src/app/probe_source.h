@@ -30,6 +30,26 @@ class Tracer;
 
 namespace ddish::app {
 
+// The warm-up before the first visible frame ("no blotchy first seconds"): every active probe
+// traced at the frame's full sample count, round after round, until each has `samples` samples
+// or the time bound is reached. A round is never cut short, so the bound is kept to within one
+// round (a round is started only while the last one's duration still fits), and the first round
+// always runs.
+struct WarmupOptions {
+  std::uint32_t samples = 2048;  // per probe, the goal
+  double max_ms = 2000.0;        // the time bound; <= 0: no warm-up
+  bool enabled() const { return max_ms > 0.0 && samples > 0; }
+};
+
+struct WarmupReport {
+  int rounds = 0;
+  double ms = 0.0;
+  std::uint32_t probes = 0;             // active probes after the warm-up
+  std::uint64_t samples_per_probe = 0;  // rounds * samples of a round
+  bool bounded = false;                 // stopped by the time bound before the goal
+  std::vector<std::uint32_t> changed;   // probes to upload (increasing)
+};
+
 // A frame's probe update: what changed (for the upload), and the plan and statistics of an
 // in-process update (empty otherwise) for the frame's scheduler record.
 struct ProbeStep {
@@ -49,6 +69,14 @@ class ProbeSource {
   // stages go into `timings`, figures into `counts`.
   virtual ProbeStep update(const std::vector<scene::View>& views, bool enabled,
                            metrics::FrameTimings& timings, FrameCounts& counts) = 0;
+  // This frame's whole budget, from a view source with a clock of its own (OpenXR's display
+  // period: FrameLoopOptions::pacer), before update(). A source that plans nothing itself (the
+  // stream's client: the server schedules) ignores it.
+  virtual void set_frame_budget(double /*budget_ms*/) {}
+  // Before the first frame, the scene posed for it: bring the probes close to converged
+  // (WarmupOptions). A source whose probes come from elsewhere (the stream's client: its first
+  // frame waits for the server's snapshot) does nothing.
+  virtual WarmupReport warm_up(const WarmupOptions& /*options*/) { return {}; }
   // After the frame (frame index, its stages): the source learns what it cost, and fills the
   // frame's scheduler record.
   virtual void finished(int frame, const metrics::FrameTimings& timings, const ProbeStep& step,
@@ -72,6 +100,8 @@ class InProcessProbes final : public ProbeSource {
                    metrics::FrameTimings& timings, FrameCounts& counts) override;
   void finished(int frame, const metrics::FrameTimings& timings, const ProbeStep& step,
                 bool enabled, FrameCounts& counts) override;
+  void set_frame_budget(double budget_ms) override { scheduler_.set_budget_ms(budget_ms); }
+  WarmupReport warm_up(const WarmupOptions& options) override;
 
  private:
   // The probes traced this frame (`traced`, increasing) and those whose flags changed since the

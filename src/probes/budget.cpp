@@ -81,4 +81,11 @@ void BudgetController::observe(const FrameCost& c) {
   ++frames_;
 }
 
+void BudgetController::set_budget_ms(double budget_ms) {
+  if (!std::isfinite(budget_ms)) throw std::invalid_argument("the frame budget must be finite");
+  options_.budget_ms = budget_ms;
+  if (!limited()) headroom_ms_ = 0.0;
+  headroom_ms_ = std::min(headroom_ms_, 0.5 * std::max(0.0, budget_ms));
+}
+
 }  // namespace ddish::probes

@@ -66,6 +66,11 @@ class BudgetController {
   double probe_ms_allowance() const;
   std::uint64_t path_allowance() const;
 
+  // Changes the budget from the next plan on (a display whose period changes: OpenXR's
+  // predictedDisplayPeriod); what was learnt (rates, rest of the frame, jitter) is kept, so the
+  // allowance follows the new budget at once. <= 0: none. Throws std::invalid_argument when
+  // non-finite.
+  void set_budget_ms(double budget_ms);
   // Learns from a finished frame (negative or non-finite measurements are ignored).
   void observe(const FrameCost& cost);
 

@@ -86,6 +86,11 @@ class Scheduler {
   // nothing is in view and only the max-age refresh runs, within the budget).
   FramePlan plan(const ProbeVolume& volume, std::span<const scene::View> views) const;
 
+  // The frame budget from the next plan on (budget.h: set_budget_ms); <= 0: none.
+  void set_budget_ms(double budget_ms) {
+    budget_.set_budget_ms(budget_ms);
+    options_.budget.budget_ms = budget_ms;
+  }
   // Tells the budget controller what the frame cost (after the frame).
   void observe(const FrameCost& cost) { budget_.observe(cost); }
 

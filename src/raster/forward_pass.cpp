@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "gpu/device.h"
 #include "gpu/driver_quirks.h"
@@ -36,12 +37,17 @@ std::string fragment_shader(const ForwardPassDesc& desc) {
   return "forward_sh" + std::to_string(desc.sh_order) + ".frag";
 }
 
-// Instances with a mesh, by material, so that each material's set is bound once per pass.
-std::vector<std::size_t> material_order(const scene::Scene& scene, const GpuMeshes& meshes) {
+// Instances with a mesh, by material, so that each material's set is bound once per pass;
+// blended = false: the opaque and masked ones, true: the BLEND ones (the transparent pass).
+std::vector<std::size_t> material_order(const scene::Scene& scene, const GpuMeshes& meshes,
+                                        bool blended) {
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const int mesh = scene.instances[i].mesh;
-    if (mesh >= 0 && static_cast<std::size_t>(mesh) < meshes.mesh_count()) order.push_back(i);
+    if (mesh < 0 || static_cast<std::size_t>(mesh) >= meshes.mesh_count()) continue;
+    const bool blend = scene.material_of(scene.meshes[static_cast<std::size_t>(mesh)]).alpha_mode ==
+                       scene::AlphaMode::Blend;
+    if (blend == blended) order.push_back(i);
   }
   auto material_of = [&](std::size_t i) {
     return scene.meshes[static_cast<std::size_t>(scene.instances[i].mesh)].material;
@@ -49,6 +55,25 @@ std::vector<std::size_t> material_order(const scene::Scene& scene, const GpuMesh
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return material_of(a) < material_of(b); });
   return order;
+}
+
+// The transparent instances back to front as seen from `eye`: by the distance to the centre of
+// each instance's world-space bounds (per instance and primitive, not per triangle: the
+// triangles of one mesh blend in index order).
+void sort_back_to_front(const scene::Scene& scene, const glm::vec3& eye,
+                        std::vector<std::size_t>& instances) {
+  std::vector<std::pair<float, std::size_t>> keyed;
+  keyed.reserve(instances.size());
+  for (std::size_t i : instances) {
+    const scene::Instance& inst = scene.instances[i];
+    const scene::Mesh& mesh = scene.meshes[static_cast<std::size_t>(inst.mesh)];
+    const glm::vec3 c = glm::vec3(inst.transform * glm::vec4(mesh.bounds.center(), 1.0f));
+    const glm::vec3 d = c - eye;
+    keyed.emplace_back(glm::dot(d, d), i);
+  }
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t k = 0; k < keyed.size(); ++k) instances[k] = keyed[k].second;
 }
 
 }  // namespace
@@ -70,12 +95,13 @@ void ForwardPass::prepare(ViewMethod method) {
   pipeline_for(method, method == ViewMethod::multiview ? max_multiview_ : 1u);
 }
 
-VkPipeline ForwardPass::pipeline_for(ViewMethod method, std::uint32_t view_count) {
-  if (method == ViewMethod::per_view && pipeline_) return pipeline_.get();
-  if (method == ViewMethod::layered && layered_pipeline_) return layered_pipeline_.get();
+VkPipeline ForwardPass::pipeline_for(ViewMethod method, std::uint32_t view_count, bool blend) {
+  const int b = blend ? 1 : 0;
+  if (method == ViewMethod::per_view && pipeline_[b]) return pipeline_[b].get();
+  if (method == ViewMethod::layered && layered_pipeline_[b]) return layered_pipeline_[b].get();
   const std::uint32_t mask = method == ViewMethod::multiview ? (1u << view_count) - 1u : 0u;
   if (method == ViewMethod::multiview) {
-    auto it = multiview_pipelines_.find(mask);
+    auto it = multiview_pipelines_.find({mask, blend});
     if (it != multiview_pipelines_.end()) return it->second.get();
   }
   if (method == ViewMethod::layered && !layered_vertex_) {
@@ -94,11 +120,13 @@ VkPipeline ForwardPass::pipeline_for(ViewMethod method, std::uint32_t view_count
   p.samples = static_cast<VkSampleCountFlagBits>(desc_.samples);
   p.sample_shading = desc_.sample_shading;
   p.view_mask = mask;
+  p.alpha_blend = blend;
   Pipeline made = make_graphics_pipeline(device_, p);
   const VkPipeline handle = made.get();
-  if (method == ViewMethod::multiview) multiview_pipelines_.emplace(mask, std::move(made));
-  else if (method == ViewMethod::layered) layered_pipeline_ = std::move(made);
-  else pipeline_ = std::move(made);
+  if (method == ViewMethod::multiview)
+    multiview_pipelines_.emplace(std::make_pair(mask, blend), std::move(made));
+  else if (method == ViewMethod::layered) layered_pipeline_[b] = std::move(made);
+  else pipeline_[b] = std::move(made);
   return handle;
 }
 
@@ -189,9 +217,24 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
   passes_ = 0;
   stats_ = {};
   const auto n = static_cast<std::uint32_t>(views.view_proj.size());
-  const std::vector<std::size_t> order = material_order(scene, meshes);
+  const std::vector<std::size_t> order = material_order(scene, meshes, false);
+  const std::vector<std::size_t> blended = material_order(scene, meshes, true);
   auto pass_views = [&](std::uint32_t first, std::uint32_t count) {
     return PassViews{views.view_proj.subspan(first, count), views.eyes.subspan(first, count)};
+  };
+  // The transparent pass of views [first, first + count), after their opaque draws: BLEND
+  // instances back to front from the first view's eye (a multiview block's views sit close
+  // together), drawn with the blending pipeline in the same rendering pass.
+  auto record_blended = [&](std::uint32_t first, std::uint32_t count, VkPipeline pipeline,
+                            std::uint32_t view_index, std::uint32_t first_instance) {
+    if (blended.empty()) return;
+    std::vector<std::size_t> sorted = blended;
+    sort_back_to_front(scene, views.eyes[first], sorted);
+    blend_items_.clear();
+    build_draws(scene, meshes, sorted, pass_views(first, count), views.cull, blend_items_, stats_);
+    if (blend_items_.empty()) return;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    draw_items(cmd, scene, materials, blend_items_, view_index, first_instance);
   };
 
   switch (views.method) {
@@ -203,6 +246,8 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
                    pipeline_for(ViewMethod::per_view, 1), sets);
         meshes.bind(cmd);
         draw_items(cmd, scene, materials, items_, v, 0);
+        record_blended(v, 1, blended.empty() ? VK_NULL_HANDLE : pipeline_for(ViewMethod::per_view, 1, true),
+                       v, 0);
         vkCmdEndRendering(cmd);
         ++passes_;
       }
@@ -220,6 +265,9 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
                    environment, pipeline_for(ViewMethod::multiview, count), sets);
         meshes.bind(cmd);
         draw_items(cmd, scene, materials, items_, first, 0);
+        record_blended(first, count,
+                       blended.empty() ? VK_NULL_HANDLE : pipeline_for(ViewMethod::multiview, count, true),
+                       first, 0);
         vkCmdEndRendering(cmd);
         ++passes_;
         first += count;
@@ -236,6 +284,11 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
         items_.clear();
         build_draws(scene, meshes, order, pass_views(v, 1), views.cull, items_, stats_);
         draw_items(cmd, scene, materials, items_, 0, v);
+      }
+      // Then each view's transparent draws, sorted from its own eye (layers are independent).
+      if (!blended.empty()) {
+        const VkPipeline blend_pipeline = pipeline_for(ViewMethod::layered, n, true);
+        for (std::uint32_t v = 0; v < n; ++v) record_blended(v, 1, blend_pipeline, 0, v);
       }
       vkCmdEndRendering(cmd);
       ++passes_;

@@ -1,6 +1,8 @@
 // The forward pass: every instance drawn for every view with direct light, SH-probe indirect
-// light and emission (forward_main.glsl), into an HDR target cleared to the environment's
-// radiance (the uniform sky is what a pixel that hits nothing sees; a clear, not a full-screen
+// light and emission (forward_main.glsl), opaque and masked materials first, then glTF BLEND
+// materials in a transparent pass (sorted back to front per instance, blended over what is
+// behind, depth tested but not written, lit by the probes like the rest), into an HDR target
+// cleared to the environment's radiance (the uniform sky is what a pixel that hits nothing sees; a clear, not a full-screen
 // draw, so lavapipe 22's multiview bug with primitives outside the clip volume cannot touch it).
 // The views go into a layered target, one layer per view, recorded as ViewMethod says, each
 // pass drawing only the clusters its views can see when culling is on (raster/draw_list.h).
@@ -10,6 +12,7 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <utility>
 #include <span>
 #include <vector>
 
@@ -84,7 +87,8 @@ class ForwardPass {
   const ForwardPassDesc& desc() const { return desc_; }
 
  private:
-  VkPipeline pipeline_for(ViewMethod method, std::uint32_t view_count);
+  // blend: the transparent pass's pipeline (GraphicsPipelineDesc::alpha_blend).
+  VkPipeline pipeline_for(ViewMethod method, std::uint32_t view_count, bool blend = false);
   void begin_pass(VkCommandBuffer cmd, const RenderTarget& target, VkImageView color,
                   VkImageView depth, std::uint32_t layers, std::uint32_t view_mask,
                   const glm::vec3& environment, VkPipeline pipeline,
@@ -104,12 +108,15 @@ class ForwardPass {
   std::uint32_t max_multiview_ = 1;
   bool layered_supported_ = false;
   bool reset_view_mask_ = false;  // after multiview passes: record_view_mask_reset
-  Pipeline pipeline_;                                      // per-view passes
-  Pipeline layered_pipeline_;                              // made on first use
-  std::map<std::uint32_t, Pipeline> multiview_pipelines_;  // by view mask, made on first use
+  // [0]: opaque and masked draws, [1]: the transparent pass (made when a scene has BLEND).
+  Pipeline pipeline_[2];          // per-view passes
+  Pipeline layered_pipeline_[2];  // made on first use
+  // By (view mask, blend), made on first use.
+  std::map<std::pair<std::uint32_t, bool>, Pipeline> multiview_pipelines_;
   std::uint32_t passes_ = 0;
   CullStats stats_;
-  std::vector<DrawItem> items_;  // reused from pass to pass
+  std::vector<DrawItem> items_;        // reused from pass to pass
+  std::vector<DrawItem> blend_items_;  // the transparent pass's, likewise
 };
 
 }  // namespace ddish::raster

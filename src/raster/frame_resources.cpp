@@ -35,7 +35,7 @@ std::vector<float> FrameResources::albedo_table() {
   // alpha = kMinAlpha^(1 - y_r), cosine node c at mu = x_c^3 (specular_albedo.cpp's grid).
   const Table& table = Table::get();
   std::vector<float> out;
-  out.reserve(Table::kCosNodes * Table::kRoughnessNodes + Table::kRoughnessNodes);
+  out.reserve(2 * (Table::kCosNodes * Table::kRoughnessNodes + Table::kRoughnessNodes));
   auto roughness_at = [](int r) {
     const float y = float(r) / float(Table::kRoughnessNodes - 1);
     return std::sqrt(std::pow(trace::Ggx::kMinAlpha, 1.0f - y));
@@ -46,6 +46,13 @@ std::vector<float> FrameResources::albedo_table() {
       out.push_back(table.directional(x * x * x, roughness_at(r)));
     }
   for (int r = 0; r < Table::kRoughnessNodes; ++r) out.push_back(table.average(roughness_at(r)));
+  // Then dE/dF0 the same way (another F0 of the dielectric layer: KHR_materials_ior, _specular).
+  for (int r = 0; r < Table::kRoughnessNodes; ++r)
+    for (int c = 0; c < Table::kCosNodes; ++c) {
+      const float x = float(c) / float(Table::kCosNodes - 1);
+      out.push_back(table.directional_slope(x * x * x, roughness_at(r)));
+    }
+  for (int r = 0; r < Table::kRoughnessNodes; ++r) out.push_back(table.average_slope(roughness_at(r)));
   return out;
 }
 

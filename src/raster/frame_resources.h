@@ -38,7 +38,8 @@ class FrameResources {
   // Points binding 4 at the shadow-map array (a depth view in SHADER_READ_ONLY layout).
   void bind_shadow_maps(VkImageView view, VkSampler sampler);
 
-  // The albedo table as uploaded: 32 x 32 E(mu, roughness) nodes, then 32 E_avg values.
+  // The albedo table as uploaded: 32 x 32 E(mu, roughness) nodes, then 32 E_avg values, then
+  // the same for dE/dF0 (trace::DielectricSpecularAlbedo::Slice::slope).
   static std::vector<float> albedo_table();
 
  private:

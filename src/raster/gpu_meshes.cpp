@@ -31,6 +31,14 @@ Vertex make_vertex(const scene::Mesh& mesh, std::size_t i) {
   v.tangent[1] = t.y;
   v.tangent[2] = t.z;
   v.tangent[3] = t.w;
+  const glm::vec2 uv1 = i < mesh.uvs1.size() ? mesh.uvs1[i] : glm::vec2(0.0f);
+  v.uv1[0] = uv1.x;
+  v.uv1[1] = uv1.y;
+  const glm::vec4 c = i < mesh.colors.size() ? mesh.colors[i] : glm::vec4(1.0f);  // COLOR_0
+  v.color[0] = c.r;
+  v.color[1] = c.g;
+  v.color[2] = c.b;
+  v.color[3] = c.a;
   return v;
 }
 
@@ -89,11 +97,13 @@ VkVertexInputBindingDescription GpuMeshes::binding() {
   return {0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
 }
 
-std::array<VkVertexInputAttributeDescription, 4> GpuMeshes::attributes() {
+std::array<VkVertexInputAttributeDescription, 6> GpuMeshes::attributes() {
   return {{{0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, position)},
            {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(Vertex, normal)},
            {2, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv)},
-           {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)}}};
+           {3, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, tangent)},
+           {4, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(Vertex, uv1)},
+           {5, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(Vertex, color)}}};
 }
 
 }  // namespace ddish::raster

@@ -25,15 +25,18 @@ struct Scene;
 
 namespace ddish::raster {
 
-// One interleaved vertex: 48 bytes. Attribute locations 0..3 in forward.vert; the shadow pass
-// reads the position only.
+// One interleaved vertex: 72 bytes. Attribute locations 0..5 in forward_vertex.glsl (position,
+// normal, UV0, tangent, UV1, COLOR_0); the shadow pass reads the position only, the masked
+// shadow pass the UVs and the colour's alpha.
 struct Vertex {
   float position[3];
   float normal[3];
   float uv[2];
   float tangent[4];
+  float uv1[2];
+  float color[4];  // COLOR_0, linear RGBA; white without vertex colours
 };
-static_assert(sizeof(Vertex) == 48);
+static_assert(sizeof(Vertex) == 72);
 
 struct MeshRange {
   std::uint32_t first_index = 0;
@@ -58,10 +61,10 @@ class GpuMeshes {
   const MeshRange& range(int mesh) const { return ranges_.at(static_cast<std::size_t>(mesh)); }
   std::size_t mesh_count() const { return ranges_.size(); }
 
-  // Vertex input of the pipelines that draw these buffers: all four attributes, or the
+  // Vertex input of the pipelines that draw these buffers: all six attributes, or the
   // position alone (depth-only passes).
   static VkVertexInputBindingDescription binding();
-  static std::array<VkVertexInputAttributeDescription, 4> attributes();
+  static std::array<VkVertexInputAttributeDescription, 6> attributes();
 
  private:
   gpu::Buffer vertices_;

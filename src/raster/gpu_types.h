@@ -61,12 +61,21 @@ enum TextureBit : std::uint32_t {
   kEmissiveBit = 16u,
 };
 
+// Texture slots in MaterialData::uv_rows' order (bindings 1..5 of the material set).
+inline constexpr std::uint32_t kMaterialSlots = 5;
+
 struct MaterialData {
   glm::vec4 base_color{1.0f};
   glm::vec4 emission{0.0f};  // rgb: emissiveFactor × strength; w: 1 = KHR_materials_unlit
   glm::vec4 params{0.0f};  // metallic, roughness, normal scale, occlusion strength
-  glm::vec4 alpha{0.0f};   // cutoff, 1 = MASK, texture bits
+  glm::vec4 alpha{0.0f};   // cutoff, 1 = MASK, texture bits, 1 = BLEND
+  // Per slot s: rows 2s and 2s+1 of its KHR_texture_transform (scene::TextureTransform::row0/1),
+  // uv' = (dot(row0.xyz, (uv, 1)), dot(row1.xyz, (uv, 1))); row0.w is the UV set (0 or 1).
+  glm::vec4 uv_rows[2 * kMaterialSlots]{};
+  // rgb: the dielectric layer's F0 (KHR_materials_ior, KHR_materials_specular's colour), w: the
+  // layer's weight (specularFactor); 0.04 and 1 by default.
+  glm::vec4 dielectric{0.04f, 0.04f, 0.04f, 1.0f};
 };
-static_assert(sizeof(MaterialData) == 64);
+static_assert(sizeof(MaterialData) == 80 + 32 * kMaterialSlots);
 
 }  // namespace ddish::raster

@@ -33,6 +33,9 @@ struct GraphicsPipelineDesc {
   bool sample_shading = false;  // shade every sample (needs the sampleRateShading feature)
   bool depth_bias = false;      // constant depth bias for shadow maps
   std::uint32_t view_mask = 0;  // multiview: one bit per view rendered by one draw
+  // Transparent (glTF BLEND) draws: colour = src * alpha + dst * (1 - alpha), depth tested but
+  // not written, so sorted layers behind one another all blend.
+  bool alpha_blend = false;
 };
 
 Pipeline make_graphics_pipeline(const gpu::Device& device, const GraphicsPipelineDesc& desc);

@@ -17,7 +17,7 @@ namespace ddish::raster {
 
 namespace {
 
-constexpr std::uint32_t kSlots = 5;  // bindings 1..5, in forward.frag's order
+constexpr std::uint32_t kSlots = kMaterialSlots;  // bindings 1..5, in forward_main.glsl's order
 
 void mip_barrier(VkCommandBuffer cmd, VkImage image, std::uint32_t mip, VkImageLayout from,
                  VkImageLayout to, VkAccessFlags src, VkAccessFlags dst, VkPipelineStageFlags dst_stage) {
@@ -127,21 +127,33 @@ VkSamplerAddressMode address_mode(scene::Wrap wrap) {
 }  // namespace
 
 VkSampler MaterialTextures::sampler_for(const scene::TextureSlot& slot) {
-  const auto key = std::make_pair(slot.wrap_s, slot.wrap_t);
+  const SamplerKey key{slot.wrap_s, slot.wrap_t, slot.mag_filter, slot.min_filter, slot.mip_filter};
   auto it = samplers_.find(key);
   if (it != samplers_.end()) return it->second.get();
+  auto filter = [](scene::Filter f) {
+    return f == scene::Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
+  };
   VkSamplerCreateInfo sampler{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  sampler.magFilter = VK_FILTER_LINEAR;
-  sampler.minFilter = VK_FILTER_LINEAR;
-  sampler.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
+  // glTF's magFilter / minFilter, as the path tracer applies them (trace/texture_lookup.h).
+  sampler.magFilter = filter(slot.mag_filter);
+  sampler.minFilter = filter(slot.min_filter);
+  sampler.mipmapMode = slot.mip_filter == scene::MipFilter::Linear ? VK_SAMPLER_MIPMAP_MODE_LINEAR
+                                                                   : VK_SAMPLER_MIPMAP_MODE_NEAREST;
   // glTF's wrapS / wrapT, as the path tracer reads them (trace/texture_lookup.h).
   sampler.addressModeU = address_mode(slot.wrap_s);
   sampler.addressModeV = address_mode(slot.wrap_t);
   sampler.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  sampler.maxLod = VK_LOD_CLAMP_NONE;
+  // A minFilter without mipmaps reads level 0 only: maxLod 0.25 keeps the magnification /
+  // minification choice (lod <= 0) while clamping the level, as the Vulkan specification
+  // advises for emulating OpenGL's NEAREST and LINEAR minification.
+  sampler.maxLod = slot.mip_filter == scene::MipFilter::None ? 0.25f : VK_LOD_CLAMP_NONE;
   // Off by default on CPU devices, where lavapipe's anisotropic filter can stall a view for
-  // tens of seconds (raster/anisotropy.h).
-  if (max_anisotropy_ > 1.0f) {
+  // tens of seconds (raster/anisotropy.h); never with nearest filters, which ask for texels
+  // unblended.
+  const bool all_linear = slot.mag_filter == scene::Filter::Linear &&
+                          slot.min_filter == scene::Filter::Linear &&
+                          slot.mip_filter == scene::MipFilter::Linear;
+  if (max_anisotropy_ > 1.0f && all_linear) {
     sampler.anisotropyEnable = VK_TRUE;
     sampler.maxAnisotropy = max_anisotropy_;
   }
@@ -196,6 +208,7 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
     data.base_color = mat.base_color;
     data.emission = glm::vec4(mat.emission(), mat.unlit ? 1.0f : 0.0f);  // w: KHR_materials_unlit
     data.params = {mat.metallic, mat.roughness, mat.normal_scale, mat.occlusion_strength};
+    data.dielectric = glm::vec4(mat.dielectric_f0(), mat.specular);
     std::uint32_t bits = 0;
     std::array<VkDescriptorImageInfo, kSlots> images{};
     for (std::uint32_t i = 0; i < kSlots; ++i) {
@@ -206,7 +219,12 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
       images[i] = {sampler_for(slot), image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     }
     data.alpha = {mat.alpha_cutoff, mat.alpha_mode == scene::AlphaMode::Mask ? 1.0f : 0.0f,
-                  static_cast<float>(bits), 0.0f};
+                  static_cast<float>(bits), mat.alpha_mode == scene::AlphaMode::Blend ? 1.0f : 0.0f};
+    for (std::uint32_t i = 0; i < kSlots; ++i) {  // KHR_texture_transform and the UV set
+      const scene::TextureSlot& slot = *slots[i].first;
+      data.uv_rows[2 * i] = glm::vec4(slot.transform.row0(), slot.texcoord == 1 ? 1.0f : 0.0f);
+      data.uv_rows[2 * i + 1] = glm::vec4(slot.transform.row1(), 0.0f);
+    }
     uniforms_.write(&data, sizeof(data), stride * m);
 
     VkDescriptorBufferInfo buffer{uniforms_.handle(), stride * m, sizeof(MaterialData)};

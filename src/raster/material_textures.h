@@ -1,12 +1,13 @@
 // Materials on the GPU: the scene's textures as sampled images with full mip chains (generated
-// on the GPU by blits), one sampler, and one descriptor set per material (lavapipe has no
-// descriptor indexing, so a material is bound per draw): a uniform block of its factors and
-// five combined image samplers (base colour and emissive in sRGB formats, the rest linear).
-// Empty slots are bound to a 1x1 white texture and flagged off in the uniform block.
+// on the GPU by blits), one sampler per glTF wrap and filter combination, and one descriptor
+// set per material (lavapipe has no descriptor indexing, so a material is bound per draw): a
+// uniform block of its factors and texture transforms, and five combined image samplers (base
+// colour and emissive in sRGB formats, the rest linear). Empty slots are bound to a 1x1 white texture and flagged off in the uniform block.
 #pragma once
 
 #include <cstdint>
 #include <map>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -53,12 +54,12 @@ class MaterialTextures {
   float max_anisotropy_ = 1.0f;
   gpu::Image white_;
   std::map<std::pair<int, bool>, gpu::Image> images_;  // (texture, sRGB) -> image
-  // The sampler for a slot's glTF wrapS / wrapT, made on first use (at most 9).
+  // The sampler for a slot's glTF wrapS / wrapT and magFilter / minFilter, made on first use.
   VkSampler sampler_for(const scene::TextureSlot& slot);
 
-  // (wrapS, wrapT) -> sampler; the filters are linear with linear mips for every texture.
-  std::map<std::pair<scene::Wrap, scene::Wrap>, gpu::DeviceHandle<VkSampler, vkDestroySampler>>
-      samplers_;
+  using SamplerKey =
+      std::tuple<scene::Wrap, scene::Wrap, scene::Filter, scene::Filter, scene::MipFilter>;
+  std::map<SamplerKey, gpu::DeviceHandle<VkSampler, vkDestroySampler>> samplers_;
   gpu::Buffer uniforms_;
   gpu::DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout> layout_;
   gpu::DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool> pool_;

@@ -29,15 +29,24 @@ SceneFeatures analyze(const Scene& scene) {
     f.blended_materials += m->alpha_mode == AlphaMode::Blend;
     f.double_sided_materials += m->double_sided;
     f.emissive_materials += m->is_emissive();
-    bool textured = false;
+    f.dielectric_materials += m->ior != 1.5f || m->specular != 1.0f || m->specular_color != glm::vec3(1.0f);
+    bool textured = false, second_uv = false, transformed = false;
     for (const TextureSlot* s : {&m->base_color_texture, &m->metallic_roughness_texture,
                                  &m->normal_texture, &m->occlusion_texture, &m->emissive_texture})
       if (*s) {
         textures.insert(s->texture);
         textured = true;
+        second_uv |= s->texcoord == 1;
+        transformed |= !s->transform.identity();
       }
     f.textured_materials += textured;
+    f.second_uv_materials += second_uv;
+    f.texture_transform_materials += transformed;
   }
+  std::set<int> colored;
+  for (const auto& inst : scene.instances)
+    if (!scene.meshes[std::size_t(inst.mesh)].colors.empty()) colored.insert(inst.mesh);
+  f.vertex_colored_meshes = colored.size();
   f.materials_used = used.size();
   f.textures_used = textures.size();
   for (const auto& l : scene.lights) {

@@ -38,6 +38,10 @@ struct SceneFeatures {
   std::size_t blended_materials = 0;  // alphaMode BLEND
   std::size_t double_sided_materials = 0;
   std::size_t emissive_materials = 0;  // emissiveFactor × strength > 0
+  std::size_t second_uv_materials = 0;          // a texture on TEXCOORD_1
+  std::size_t texture_transform_materials = 0;  // a texture with a KHR_texture_transform
+  std::size_t dielectric_materials = 0;  // KHR_materials_ior / _specular other than glTF's default
+  std::size_t vertex_colored_meshes = 0;  // instanced meshes with COLOR_0
 
   std::size_t directional_lights = 0;
   std::size_t point_lights = 0;

@@ -24,7 +24,9 @@ namespace {
 // The extensions ddish implements; a file that requires any other cannot be shown correctly.
 bool supported_extension(const std::string& name) {
   return name == "KHR_lights_punctual" || name == "KHR_materials_emissive_strength" ||
-         name == "EXT_mesh_gpu_instancing" || name == "KHR_materials_unlit";
+         name == "EXT_mesh_gpu_instancing" || name == "KHR_materials_unlit" ||
+         name == "KHR_texture_transform" || name == "KHR_materials_ior" ||
+         name == "KHR_materials_specular";
 }
 
 LoadError unsupported_extension(const std::string& path, const std::string& ext) {

@@ -1,6 +1,8 @@
 // glTF materials, KHR_lights_punctual lights and cameras to the scene model.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 #include "scene/gltf_internal.h"
 
@@ -48,8 +50,52 @@ Wrap wrap_of(int gl) {
   }
 }
 
-// Maps a glTF texture reference to the decoded image it samples (Scene::textures are images).
-TextureSlot slot(const Context& ctx, int texture, int texcoord, const std::string& what) {
+Filter mag_filter_of(int gl) {
+  return gl == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::Nearest : Filter::Linear;
+}
+
+// glTF minFilter -> (filter within a level, how levels are chosen); -1 (absent): trilinear.
+std::pair<Filter, MipFilter> min_filter_of(int gl) {
+  switch (gl) {
+    case TINYGLTF_TEXTURE_FILTER_NEAREST:
+      return {Filter::Nearest, MipFilter::None};
+    case TINYGLTF_TEXTURE_FILTER_LINEAR:
+      return {Filter::Linear, MipFilter::None};
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+      return {Filter::Nearest, MipFilter::Nearest};
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+      return {Filter::Linear, MipFilter::Nearest};
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+      return {Filter::Nearest, MipFilter::Linear};
+    default:
+      return {Filter::Linear, MipFilter::Linear};
+  }
+}
+
+// A finite number member of a KHR_texture_transform object, or the fallback when absent.
+float transform_number(const Context& ctx, const tinygltf::Value& v, const char* key, float fallback,
+                       const std::string& what) {
+  if (!v.Has(key)) return fallback;
+  const tinygltf::Value& x = v.Get(key);
+  if (!x.IsNumber()) ctx.fail(what + ": KHR_texture_transform " + key + " is not a number");
+  return finite_number(ctx, x.GetNumberAsDouble(), what + ": KHR_texture_transform " + key);
+}
+
+glm::vec2 transform_pair(const Context& ctx, const tinygltf::Value& v, const char* key,
+                         glm::vec2 fallback, const std::string& what) {
+  if (!v.Has(key)) return fallback;
+  const tinygltf::Value& x = v.Get(key);
+  if (!x.IsArray() || x.ArrayLen() != 2 || !x.Get(0).IsNumber() || !x.Get(1).IsNumber())
+    ctx.fail(what + ": KHR_texture_transform " + key + " must be an array of two numbers");
+  const std::string label = what + ": KHR_texture_transform " + key;
+  return {finite_number(ctx, x.Get(0).GetNumberAsDouble(), label),
+          finite_number(ctx, x.Get(1).GetNumberAsDouble(), label)};
+}
+
+// Maps a glTF texture reference to the decoded image it samples (Scene::textures are images),
+// with its sampler's wrap and filter modes and its KHR_texture_transform.
+TextureSlot slot(const Context& ctx, int texture, int texcoord, const tinygltf::ExtensionMap& ext,
+                 const std::string& what) {
   TextureSlot s;
   if (texture < 0) return s;
   const auto& m = ctx.model;
@@ -58,19 +104,69 @@ TextureSlot slot(const Context& ctx, int texture, int texcoord, const std::strin
   int source = m.textures[std::size_t(texture)].source;
   if (source < 0 || std::size_t(source) >= m.images.size())
     ctx.fail(what + ": texture " + std::to_string(texture) + " has no valid image source");
-  if (texcoord != 0)
+  auto it = ext.find("KHR_texture_transform");
+  if (it != ext.end() && it->second.IsObject()) {
+    const tinygltf::Value& v = it->second;
+    s.transform.offset = transform_pair(ctx, v, "offset", glm::vec2(0.0f), what);
+    s.transform.rotation = transform_number(ctx, v, "rotation", 0.0f, what);
+    s.transform.scale = transform_pair(ctx, v, "scale", glm::vec2(1.0f), what);
+    // The extension's texCoord overrides the texture info's.
+    if (v.Has("texCoord")) {
+      if (!v.Get("texCoord").IsInt())
+        ctx.fail(what + ": KHR_texture_transform texCoord is not an integer");
+      texcoord = v.Get("texCoord").GetNumberAsInt();
+    }
+  }
+  if (texcoord != 0 && texcoord != 1)
     ctx.fail(what + ": uses TEXCOORD_" + std::to_string(texcoord) +
-             ", only TEXCOORD_0 is supported");
+             ", only TEXCOORD_0 and TEXCOORD_1 are supported");
   s.texture = source;
-  s.texcoord = 0;
+  s.texcoord = texcoord;
   int sampler = m.textures[std::size_t(texture)].sampler;
   if (sampler >= 0) {
     if (std::size_t(sampler) >= m.samplers.size())
       ctx.fail(what + ": sampler " + std::to_string(sampler) + " does not exist");
-    s.wrap_s = wrap_of(m.samplers[std::size_t(sampler)].wrapS);
-    s.wrap_t = wrap_of(m.samplers[std::size_t(sampler)].wrapT);
+    const auto& gs = m.samplers[std::size_t(sampler)];
+    s.wrap_s = wrap_of(gs.wrapS);
+    s.wrap_t = wrap_of(gs.wrapT);
+    s.mag_filter = mag_filter_of(gs.magFilter);
+    std::tie(s.min_filter, s.mip_filter) = min_filter_of(gs.minFilter);
   }
   return s;
+}
+
+// KHR_materials_ior and KHR_materials_specular (factors; their textures are not read).
+void load_dielectric(const Context& ctx, const tinygltf::Material& gm, Material& mat,
+                     const std::string& what, Scene& scene) {
+  const double ior = extension_number(gm.extensions, "KHR_materials_ior", "ior", 1.5);
+  mat.ior = finite_number(ctx, ior, what + " KHR_materials_ior ior");
+  if (mat.ior < 1.0f) {
+    scene.warnings.push_back(what + ": KHR_materials_ior ior " + std::to_string(mat.ior) +
+                             " is below 1; 1.5 is used");
+    mat.ior = 1.5f;
+  }
+  auto it = gm.extensions.find("KHR_materials_specular");
+  if (it == gm.extensions.end() || !it->second.IsObject()) return;
+  const tinygltf::Value& v = it->second;
+  const std::string label = what + " KHR_materials_specular";
+  if (v.Has("specularFactor")) {
+    if (!v.Get("specularFactor").IsNumber()) ctx.fail(label + " specularFactor is not a number");
+    mat.specular = std::clamp(
+        finite_number(ctx, v.Get("specularFactor").GetNumberAsDouble(), label + " specularFactor"),
+        0.0f, 1.0f);
+  }
+  if (v.Has("specularColorFactor")) {
+    const tinygltf::Value& c = v.Get("specularColorFactor");
+    if (!c.IsArray() || c.ArrayLen() != 3)
+      ctx.fail(label + " specularColorFactor must be an array of three numbers");
+    for (int k = 0; k < 3; ++k) {
+      if (!c.Get(k).IsNumber()) ctx.fail(label + " specularColorFactor must be an array of three numbers");
+      mat.specular_color[k] = std::max(
+          0.0f, finite_number(ctx, c.Get(k).GetNumberAsDouble(), label + " specularColorFactor"));
+    }
+  }
+  if (v.Has("specularTexture") || v.Has("specularColorTexture"))
+    scene.warnings.push_back(what + ": KHR_materials_specular textures are not read (factors only)");
 }
 
 }  // namespace
@@ -113,17 +209,18 @@ void load_materials(const Context& ctx, Scene& scene) {
     mat.alpha_cutoff = std::max(0.0f, finite_or(gm.alphaCutoff, 0.5f));
     mat.double_sided = gm.doubleSided;
     mat.unlit = gm.extensions.count("KHR_materials_unlit") > 0;
+    load_dielectric(ctx, gm, mat, what, scene);
     mat.base_color_texture = slot(ctx, pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                                  what + " baseColorTexture");
+                                  pbr.baseColorTexture.extensions, what + " baseColorTexture");
     mat.metallic_roughness_texture =
         slot(ctx, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-             what + " metallicRoughnessTexture");
-    mat.normal_texture =
-        slot(ctx, gm.normalTexture.index, gm.normalTexture.texCoord, what + " normalTexture");
+             pbr.metallicRoughnessTexture.extensions, what + " metallicRoughnessTexture");
+    mat.normal_texture = slot(ctx, gm.normalTexture.index, gm.normalTexture.texCoord,
+                              gm.normalTexture.extensions, what + " normalTexture");
     mat.occlusion_texture = slot(ctx, gm.occlusionTexture.index, gm.occlusionTexture.texCoord,
-                                 what + " occlusionTexture");
-    mat.emissive_texture =
-        slot(ctx, gm.emissiveTexture.index, gm.emissiveTexture.texCoord, what + " emissiveTexture");
+                                 gm.occlusionTexture.extensions, what + " occlusionTexture");
+    mat.emissive_texture = slot(ctx, gm.emissiveTexture.index, gm.emissiveTexture.texCoord,
+                                gm.emissiveTexture.extensions, what + " emissiveTexture");
     scene.materials.push_back(std::move(mat));
   }
 }

@@ -32,6 +32,30 @@ std::vector<glm::vec<N, float>> read_vectors(const Context& ctx, int accessor, s
   return out;
 }
 
+// COLOR_0: RGB or RGBA, float or normalised unsigned byte / short (read_floats converts them);
+// RGB gets alpha 1. Linear values, as glTF specifies.
+std::vector<glm::vec4> read_colors(const Context& ctx, int accessor, std::size_t count,
+                                   const std::string& what) {
+  FloatData d = read_floats(ctx, accessor, what);
+  if (d.components != 3 && d.components != 4)
+    ctx.fail(what + ": expected 3 or 4 components, accessor " + std::to_string(accessor) +
+             " has " + std::to_string(d.components));
+  if (d.count() != count)
+    ctx.fail(what + ": " + std::to_string(d.count()) + " values for " + std::to_string(count) +
+             " vertices");
+  const auto k = std::size_t(d.components);
+  std::vector<glm::vec4> out(count, glm::vec4(1.0f));
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t c = 0; c < k; ++c) {
+      float v = d.values[i * k + c];
+      if (!std::isfinite(v))
+        ctx.fail(what + ": vertex " + std::to_string(i) + " is not finite (" + std::to_string(v) +
+                 ")");
+      out[i][int(c)] = v;
+    }
+  return out;
+}
+
 // Triangle list indices for a primitive's mode; strips and fans keep a consistent winding.
 std::vector<std::uint32_t> triangulate(const std::vector<std::uint32_t>& idx, int mode,
                                        const Context& ctx, const std::string& what) {
@@ -54,7 +78,8 @@ std::vector<std::uint32_t> triangulate(const std::vector<std::uint32_t>& idx, in
 }
 
 Mesh load_primitive(const Context& ctx, const tinygltf::Primitive& prim, const std::string& name,
-                    std::size_t material_count) {
+                    const std::vector<Material>& materials) {
+  const std::size_t material_count = materials.size();
   Mesh mesh;
   mesh.name = name;
   const std::string what = "mesh '" + name + "'";
@@ -70,6 +95,11 @@ Mesh load_primitive(const Context& ctx, const tinygltf::Primitive& prim, const s
     mesh.uvs = read_vectors<2>(ctx, attr("TEXCOORD_0"), n, what + " TEXCOORD_0");
   else
     mesh.uvs.assign(n, glm::vec2(0.0f));
+  if (attr("TEXCOORD_1") >= 0)
+    mesh.uvs1 = read_vectors<2>(ctx, attr("TEXCOORD_1"), n, what + " TEXCOORD_1");
+  else
+    mesh.uvs1.assign(n, glm::vec2(0.0f));
+  if (attr("COLOR_0") >= 0) mesh.colors = read_colors(ctx, attr("COLOR_0"), n, what + " COLOR_0");
   if (attr("TANGENT") >= 0)
     mesh.tangents = read_vectors<4>(ctx, attr("TANGENT"), n, what + " TANGENT");
 
@@ -99,7 +129,10 @@ Mesh load_primitive(const Context& ctx, const tinygltf::Primitive& prim, const s
       nrm = len > 0.0f ? nrm / len : glm::vec3(0.0f, 1.0f, 0.0f);
     }
   }
-  if (mesh.tangents.empty()) generate_tangents(mesh);
+  // MikkTSpace tangents on the UV set of the normal texture, as glTF specifies.
+  if (mesh.tangents.empty())
+    generate_tangents(
+        mesh, mesh.material >= 0 ? materials[std::size_t(mesh.material)].normal_texture.texcoord : 0);
   for (const auto& p : mesh.positions) mesh.bounds.expand(p);
   return mesh;
 }
@@ -124,7 +157,7 @@ std::vector<std::vector<int>> load_meshes(const Context& ctx, Scene& scene) {
       if (!prim.targets.empty())
         scene.warnings.push_back("mesh '" + name + "': morph targets are ignored");
       meshes_of[i].push_back(int(scene.meshes.size()));
-      scene.meshes.push_back(load_primitive(ctx, prim, name, m.materials.size()));
+      scene.meshes.push_back(load_primitive(ctx, prim, name, scene.materials));
     }
   }
   return meshes_of;

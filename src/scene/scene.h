@@ -3,6 +3,7 @@
 // acceleration structures and GPU resources from it.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -28,11 +29,42 @@ struct Texture {
 // How texture coordinates outside [0, 1] wrap (the glTF sampler's wrapS / wrapT).
 enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
 
+// The glTF sampler's filters. Magnification is nearest or linear; minification adds how mip
+// levels are chosen (None: level 0 only, glTF's plain NEAREST / LINEAR minFilter). A sampler
+// without filters gets linear filtering with linear mips (glTF leaves the choice to viewers).
+enum class Filter { Nearest, Linear };
+enum class MipFilter { None, Nearest, Linear };
+
+// KHR_texture_transform as the affine map it defines on texture coordinates:
+// uv' = offset + R(rotation) * (scale * uv), with R = [[cos, -sin], [sin, cos]] (the extension's
+// GLSL, mat3(cos, sin, 0, -sin, cos, 0, 0, 0, 1), is column-major). Identity when absent.
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;  // radians
+  glm::vec2 scale{1.0f};
+  // Rows of the 2 x 3 matrix: u' = dot(row0, (u, v, 1)), v' = dot(row1, (u, v, 1)).
+  glm::vec3 row0() const { return {std::cos(rotation) * scale.x, -std::sin(rotation) * scale.y, offset.x}; }
+  glm::vec3 row1() const { return {std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y}; }
+  glm::vec2 apply(glm::vec2 uv) const {
+    const glm::vec3 h(uv, 1.0f);
+    return {glm::dot(row0(), h), glm::dot(row1(), h)};
+  }
+  // |det| of the linear part: how much the map scales UV areas.
+  float area_scale() const { return std::abs(scale.x * scale.y); }
+  bool identity() const {
+    return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f);
+  }
+};
+
 struct TextureSlot {
   int texture = -1;   // index into Scene::textures, -1 when the slot is empty
-  int texcoord = 0;   // which UV set; ddish loads UV0 only and rejects others
+  int texcoord = 0;   // which UV set: 0 (TEXCOORD_0) or 1 (TEXCOORD_1), after the transform's override
   Wrap wrap_s = Wrap::Repeat;
   Wrap wrap_t = Wrap::Repeat;
+  Filter mag_filter = Filter::Linear;
+  Filter min_filter = Filter::Linear;
+  MipFilter mip_filter = MipFilter::Linear;
+  TextureTransform transform;  // KHR_texture_transform
   explicit operator bool() const { return texture >= 0; }
 };
 
@@ -54,6 +86,12 @@ struct Material {
   // KHR_materials_unlit: the surface shows its base colour (factor × texture) as radiance,
   // whatever the light, and reflects nothing; both renderers treat it so.
   bool unlit = false;
+  // The dielectric layer (KHR_materials_ior, KHR_materials_specular; factors only, their
+  // textures are not read): F0 = ((ior - 1) / (ior + 1))^2 * specular_color (clamped to 1) and
+  // the layer's weight `specular`. The defaults are glTF's dielectric, F0 = 0.04, weight 1.
+  float ior = 1.5f;
+  float specular = 1.0f;
+  glm::vec3 specular_color{1.0f};
 
   TextureSlot base_color_texture;          // sRGB
   TextureSlot metallic_roughness_texture;  // linear: G = roughness, B = metallic
@@ -61,6 +99,11 @@ struct Material {
   TextureSlot occlusion_texture;           // linear, R
   TextureSlot emissive_texture;            // sRGB
 
+  // Normal-incidence reflectance of the dielectric layer before the specular weight.
+  glm::vec3 dielectric_f0() const {
+    const float r = (ior - 1.0f) / (ior + 1.0f);
+    return glm::min(glm::vec3(r * r) * specular_color, glm::vec3(1.0f));
+  }
   // Emitted radiance before the emissive texture: emissiveFactor × emissive_strength.
   glm::vec3 emission() const { return emissive * emissive_strength; }
   bool is_emissive() const { return glm::any(glm::greaterThan(emission(), glm::vec3(0.0f))); }
@@ -72,12 +115,18 @@ struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;   // generated (area-weighted) when the file has none
   std::vector<glm::vec2> uvs;       // UV0; zeros when the file has none
+  std::vector<glm::vec2> uvs1;      // TEXCOORD_1; zeros when the file has none
+  // COLOR_0 (linear RGBA; vec3 colours get alpha 1), multiplying the base colour factor and
+  // texture in both renderers; white when the file has none.
+  std::vector<glm::vec4> colors;
   std::vector<glm::vec4> tangents;  // xyz tangent, w handedness; generated when missing
   std::vector<std::uint32_t> indices;  // 3 per triangle
   int material = -1;                   // index into Scene::materials; -1 = glTF default material
   Aabb bounds;                         // object space
 
   std::size_t triangle_count() const { return indices.size() / 3; }
+  // The UV set a texture slot reads (0 or 1).
+  const std::vector<glm::vec2>& uv_set(int texcoord) const { return texcoord == 1 ? uvs1 : uvs; }
 };
 
 // A node of the glTF hierarchy. Local TRS is what animations drive; world is derived by pose().

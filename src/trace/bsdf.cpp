@@ -2,15 +2,20 @@
 //
 // f = (1 - metallic) * dielectric + metallic * metal, with
 //   metal      = F(base_color, v.h) * D * V
-//   dielectric = F(0.04, v.h) * D * V  +  base_color / pi * coupling(wo, wi)
+//   dielectric = s F(F0d, v.h) * D * V  +  base_color / pi * coupling(wo, wi)
 // D is GGX with alpha = roughness^2 (clamped to Ggx::kMinAlpha), V the height-correlated Smith
-// visibility G2 / (4 |n.l| |n.v|), F Schlick's Fresnel. The two specular terms merge into one with
-// F0 = mix(0.04, base_color, metallic), since F is linear in F0.
+// visibility G2 / (4 |n.l| |n.v|), F Schlick's Fresnel. The dielectric layer's F0d is 0.04 (ior
+// 1.5) unless KHR_materials_ior / KHR_materials_specular change it (((ior - 1) / (ior + 1))^2
+// times the specular colour), and s is KHR_materials_specular's weight (1 by default). The two
+// specular terms merge into one Schlick-like term A + B (1 - v.h)^5, since F is linear in F0:
+// A = (1 - metallic) s F0d + metallic base, B = (1 - metallic) s (1 - F0d) + metallic (1 - base);
+// with the defaults this is Schlick with F0 = mix(0.04, base_color, metallic).
 //
 // One deliberate departure from appendix B: the diffuse base is weighted by the albedo-scaling
 // coupling of Kelemen and Szirmay-Kalos (2001),
 //   coupling = (1 - E(n.v)) (1 - E(n.l)) / (1 - E_avg),
-// where E is the directional albedo of the specular layer (DielectricSpecularAlbedo), instead of
+// where E is the directional albedo of the specular layer (DielectricSpecularAlbedo; for another
+// F0d and weight s, s (E + (F0d - 0.04) dE/dF0) per channel, exact since E is linear in F0), instead of
 // appendix B's fresnel_mix weight 1 - F(v.h). The latter is not energy-conserving: its diffuse
 // part keeps 0.93-0.96 of the light at every view angle while the layer above reflects up to F(n.v)
 // -> 1, so a white dielectric reflects 1.03 of the incident light at 60 degrees and 1.84 at
@@ -51,21 +56,33 @@ Bsdf::Bsdf(const BsdfParams& params) : params_(params), alpha_(Ggx::alpha_from_r
   params_.base_color = glm::clamp(params.base_color, glm::vec3(0.0f), glm::vec3(1.0f));
   params_.metallic = std::clamp(params.metallic, 0.0f, 1.0f);
   params_.roughness = std::clamp(params.roughness, 0.0f, 1.0f);
+  params_.dielectric_f0 = glm::clamp(params.dielectric_f0, glm::vec3(0.0f), glm::vec3(1.0f));
+  params_.specular = std::clamp(params.specular, 0.0f, 1.0f);
   const float dielectric = 1.0f - params_.metallic;
-  f0_ = glm::mix(glm::vec3(DielectricSpecularAlbedo::kF0), params_.base_color, params_.metallic);
+  const float m = params_.metallic;
+  const float s = params_.specular;
+  f0_ = dielectric * s * params_.dielectric_f0 + m * params_.base_color;
+  f90_minus_f0_ = dielectric * s * (1.0f - params_.dielectric_f0) + m * (1.0f - params_.base_color);
   const auto& table = DielectricSpecularAlbedo::get();
   layer_albedo_ = table.slice(params_.roughness);
-  const float e_avg = table.average(params_.roughness);
-  diffuse_ = dielectric * params_.base_color * (kInvPi / (1.0f - e_avg));
+  // The layer's cosine-weighted average albedo, per channel (linear in F0 as E is).
+  const glm::vec3 e_avg =
+      s * (table.average(params_.roughness) +
+           (params_.dielectric_f0 - DielectricSpecularAlbedo::kF0) * table.average_slope(params_.roughness));
+  diffuse_ = dielectric * params_.base_color * kInvPi / (1.0f - e_avg);
   diffuse_weight_ = dielectric * mean(params_.base_color);
+}
+
+glm::vec3 Bsdf::layer(float cos_theta) const {
+  const glm::vec3 df0 = params_.dielectric_f0 - DielectricSpecularAlbedo::kF0;
+  return params_.specular * (layer_albedo_(cos_theta) + df0 * layer_albedo_.slope(cos_theta));
 }
 
 glm::vec3 Bsdf::eval_diffuse(const glm::vec3& wo, const glm::vec3& wi) const {
   if (wo.z <= 0.0f || wi.z <= 0.0f) {
     return glm::vec3(0.0f);
   }
-  const float coupling = (1.0f - layer_albedo_(wo.z)) * (1.0f - layer_albedo_(wi.z));
-  return diffuse_ * coupling;
+  return diffuse_ * (1.0f - layer(wo.z)) * (1.0f - layer(wi.z));
 }
 
 glm::vec3 Bsdf::eval_specular(const glm::vec3& wo, const glm::vec3& wi) const {
@@ -76,7 +93,7 @@ glm::vec3 Bsdf::eval_specular(const glm::vec3& wo, const glm::vec3& wi) const {
   const glm::vec3 h = glm::normalize(wo + wi);  // both above the surface: the sum is not zero
   // wo.h and wi.h are equal but round differently; their mean keeps eval exactly reciprocal.
   const float cos_h = 0.5f * (glm::dot(wo, h) + glm::dot(wi, h));
-  const glm::vec3 fresnel = f0_ + (1.0f - f0_) * schlick_weight(cos_h);
+  const glm::vec3 fresnel = f0_ + f90_minus_f0_ * schlick_weight(cos_h);
   return fresnel * (ggx.d(h) * ggx.visibility(wo, wi));
 }
 
@@ -85,7 +102,7 @@ glm::vec3 Bsdf::eval(const glm::vec3& wo, const glm::vec3& wi) const {
 }
 
 float Bsdf::specular_probability(const glm::vec3& wo) const {
-  const float e = layer_albedo_(wo.z);
+  const float e = mean(layer(wo.z));
   const glm::vec3 metal_fresnel = params_.base_color + (1.0f - params_.base_color) * schlick_weight(wo.z);
   const float specular = (1.0f - params_.metallic) * e + params_.metallic * mean(metal_fresnel);
   const float diffuse = diffuse_weight_ * (1.0f - e);

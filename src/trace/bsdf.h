@@ -15,6 +15,10 @@ struct BsdfParams {
   glm::vec3 base_color{1.0f};
   float metallic = 0.0f;
   float roughness = 1.0f;  // glTF perceptual roughness; GGX alpha = roughness^2 (clamped: Ggx::kMinAlpha)
+  // The dielectric layer (KHR_materials_ior / KHR_materials_specular): its normal reflectance
+  // (0.04: ior 1.5) and its weight.
+  glm::vec3 dielectric_f0{0.04f};
+  float specular = 1.0f;
 };
 
 struct BsdfSample {
@@ -48,9 +52,15 @@ class Bsdf {
   // pdf() for wi and wo above the surface, with the lobe choice already known.
   float mixture_pdf(const glm::vec3& wo, const glm::vec3& wi, float p_specular) const;
 
+  // The dielectric layer's albedo per channel: specular * (E(mu) + (F0 - 0.04) S(mu)).
+  glm::vec3 layer(float cos_theta) const;
+
   BsdfParams params_;
   float alpha_;
-  glm::vec3 f0_{0.04f};       // specular reflectance at normal incidence: mix(0.04, base, metallic)
+  // The specular lobe's Fresnel, f0_ + f90_minus_f0_ (1 - v.h)^5: the dielectric layer's
+  // Schlick term weighted by (1 - metallic) specular, plus the metal's weighted by metallic.
+  glm::vec3 f0_{0.04f};
+  glm::vec3 f90_minus_f0_{0.96f};
   glm::vec3 diffuse_{0.0f};   // (1 - metallic) base / (pi (1 - E_avg)), see bsdf.cpp
   float diffuse_weight_ = 0;  // (1 - metallic) * mean(base): the diffuse lobe's share estimate
   DielectricSpecularAlbedo::Slice layer_albedo_;  // E(mu) of the dielectric layer at this roughness

@@ -17,6 +17,7 @@ namespace {
 struct FilterContext {
   RTCIntersectContext rtc;
   const RayQuery* query;
+  glm::vec3 direction;  // the ray's, in world space (filters may see it in instance space)
 };
 
 // A uniform number in [0, 1) from the ray's seed and the hit's identity (Blend transparency).
@@ -52,7 +53,20 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
         const float width = q.cone_width + q.cone_spread * t;
         const glm::mat4& xf = geom->owner->transform(static_cast<int>(instance)).object_to_world;
         const float area = world_triangle(*geom->mesh, xf, prim).area();
-        lod = tex->lod_for_footprint(width, 1.0f, uv_area(*geom->mesh, prim), area);
+        const scene::TextureSlot& slot = mat.base_color_texture;
+        lod = tex->lod_for_footprint(
+            width, 1.0f, uv_area(*geom->mesh, prim, slot.texcoord) * slot.transform.area_scale(), area);
+      }
+    }
+    // A single-sided BLEND surface seen from behind is not there, as the rasterizer culls its
+    // back faces: the ray passes (a closed opaque object's back faces still end paths).
+    if (mat.alpha_mode == scene::AlphaMode::Blend && !mat.double_sided && instance != RTC_INVALID_GEOMETRY_ID) {
+      const InstanceTransform& xf = geom->owner->transform(static_cast<int>(instance));
+      glm::vec3 ng = world_triangle(*geom->mesh, xf.object_to_world, prim).cross();
+      if (xf.mirrored) ng = -ng;
+      if (glm::dot(ng, ctx->direction) > 0.0f) {
+        args->valid[i] = 0;
+        continue;
       }
     }
     const float alpha = alpha_at(mat, *geom->textures, *geom->mesh, prim, u, v, lod);
@@ -178,6 +192,7 @@ bool EmbreeScene::intersect(const Ray& ray, const RayQuery& query, Hit& hit) con
   rtcInitIntersectContext(&ctx.rtc);
   ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   ctx.query = &query;
+  ctx.direction = ray.direction;
   RTCRayHit rh = to_rtc_rayhit(ray);
   rtcIntersect1(top_, &ctx.rtc, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID || rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID) return false;
@@ -195,6 +210,7 @@ bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, 
   rtcInitIntersectContext(&ctx.rtc);
   ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   ctx.query = &query;
+  ctx.direction = direction;
   RTCRay r;
   r.org_x = origin.x;
   r.org_y = origin.y;

@@ -10,6 +10,7 @@
 // equals what blending a single layer gives, shadows included, and a seed replays exactly.
 // Layers decide independently (the hash includes the triangle), so k layers of alpha a transmit
 // (1-a)^k; a ray exactly through an edge shared by two triangles meets it twice (measure zero).
+// A single-sided Blend surface hit from behind is skipped, as the rasterizer culls it there.
 #pragma once
 
 #include <cstdint>

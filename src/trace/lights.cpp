@@ -159,11 +159,9 @@ bool LightSet::sample_emissive(const glm::vec3& p, const glm::vec3& u, LightSamp
   const scene::Mesh& mesh = scene_->meshes[static_cast<std::size_t>(inst.mesh)];
   const scene::Material& mat = scene_->material_of(mesh);
   glm::vec3 le = mat.emission();
-  if (const MipTexture* tex = textures_->get(mat.emissive_texture.texture);
-      tex != nullptr && mesh.uvs.size() == mesh.positions.size()) {
+  if (const MipTexture* tex = textures_->get(mat.emissive_texture.texture)) {
     // Light samples have no ray cone: the emissive texture is read at its finest level.
-    const std::uint32_t* idx = &mesh.indices[static_cast<std::size_t>(t.prim) * 3];
-    const glm::vec2 uv = mesh.uvs[idx[0]] * b.x + mesh.uvs[idx[1]] * b.y + mesh.uvs[idx[2]] * b1;
+    const glm::vec2 uv = slot_uv(mesh, mat.emissive_texture, t.prim, glm::vec3(b.x, b.y, b1));
     le *= glm::vec3(tex->sample(uv, 0.0f, true, wrap_of(mat.emissive_texture)));
   }
   out.wi = wi;

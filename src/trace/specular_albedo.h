@@ -7,6 +7,8 @@
 
 #include <array>
 
+#include <glm/glm.hpp>
+
 namespace ddish::trace {
 
 class DielectricSpecularAlbedo {
@@ -20,14 +22,20 @@ class DielectricSpecularAlbedo {
 
   // E(mu) at one roughness: the two table rows around it, kept for repeated lookups (a BSDF
   // holds one). Valid as long as the table, i.e. for the whole program.
+  // Schlick's Fresnel is linear in F0, so the albedo of a layer of any F0 (KHR_materials_ior,
+  // KHR_materials_specular) is E(mu) + (F0 - kF0) * S(mu), with S(mu) = dE/dF0 the integral of
+  // (1 - (1 - wo.h)^5) G2 / G1 (the second table); slope() reads it.
   class Slice {
    public:
     float operator()(float cos_theta) const;
+    float slope(float cos_theta) const;
 
    private:
     friend class DielectricSpecularAlbedo;
     const float* row0_ = nullptr;
     const float* row1_ = nullptr;
+    const float* slope0_ = nullptr;
+    const float* slope1_ = nullptr;
     float t_ = 0.0f;
   };
   Slice slice(float roughness) const;
@@ -40,10 +48,18 @@ class DielectricSpecularAlbedo {
   // E_avg(roughness) = integral of E(mu) 2 mu dmu over [0, 1] of the same interpolant, so that
   // integral (1 - E(mu)) 2 mu dmu = 1 - E_avg holds exactly for the table's E.
   float average(float roughness) const;
+  // S(mu, roughness) = dE/dF0 and its cosine-weighted average, interpolated as E is.
+  float directional_slope(float cos_theta, float roughness) const;
+  float average_slope(float roughness) const;
 
   // E(mu, roughness) by direct quadrature over visible normals (n x n stratified midpoints); the
   // table's source, and the tests' reference.
   static double integrate(float cos_theta, float roughness, int n);
+  // The same for a layer of normal reflectance f0 (integrate() is f0 = kF0).
+  static double integrate_f0(float cos_theta, float roughness, int n, float f0);
+  // Both parts of E = parts.x + F0 * parts.y: the integrals of w G2 / G1 and (1 - w) G2 / G1,
+  // w = (1 - wo.h)^5.
+  static glm::dvec2 integrate_parts(float cos_theta, float roughness, int n);
 
  private:
   DielectricSpecularAlbedo();
@@ -53,6 +69,8 @@ class DielectricSpecularAlbedo {
   // nodes crowd there.
   std::array<float, kCosNodes * kRoughnessNodes> e_{};
   std::array<float, kRoughnessNodes> e_avg_{};
+  std::array<float, kCosNodes * kRoughnessNodes> s_{};  // dE/dF0
+  std::array<float, kRoughnessNodes> s_avg_{};
 };
 
 }  // namespace ddish::trace

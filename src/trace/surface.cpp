@@ -25,12 +25,19 @@ T interpolate(const std::vector<T>& attr, const std::uint32_t* idx, float u, flo
 }
 
 // Texture lod for a footprint (its texture-independent part computed once per hit), or the
-// fixed level when one is asked for.
+// fixed level when one is asked for. A slot's footprint in UV units scales with the square root
+// of its UV set's area (per world area) and of its transform's area scale.
 struct LodRule {
-  float log2_uv_footprint = 0.0f;
+  float cone_width = 0.0f;
+  float cos_theta = 1.0f;
+  float world_area = 0.0f;
+  const scene::Mesh* mesh = nullptr;
+  int prim = -1;
   int fixed = -1;
-  float lod(const MipTexture& t) const {
-    return fixed >= 0 ? static_cast<float>(fixed) : t.lod_for_footprint_log2(log2_uv_footprint);
+  float lod(const MipTexture& t, const scene::TextureSlot& slot) const {
+    if (fixed >= 0) return static_cast<float>(fixed);
+    const float area = uv_area(*mesh, prim, slot.texcoord) * slot.transform.area_scale();
+    return t.lod_for_footprint_log2(MipTexture::footprint_log2(cone_width, cos_theta, area, world_area));
   }
 };
 
@@ -42,22 +49,38 @@ WorldTriangle world_triangle(const scene::Mesh& mesh, const glm::mat4& xf, int p
   return {w(idx[0]), w(idx[1]), w(idx[2])};
 }
 
-float uv_area(const scene::Mesh& mesh, int prim) {
-  if (mesh.uvs.size() != mesh.positions.size()) return 0.0f;
+float uv_area(const scene::Mesh& mesh, int prim, int texcoord) {
+  const std::vector<glm::vec2>& uvs = mesh.uv_set(texcoord);
+  if (uvs.size() != mesh.positions.size()) return 0.0f;
   const std::uint32_t* idx = &mesh.indices[static_cast<std::size_t>(prim) * 3];
-  const glm::vec2 a = mesh.uvs[idx[1]] - mesh.uvs[idx[0]];
-  const glm::vec2 b = mesh.uvs[idx[2]] - mesh.uvs[idx[0]];
+  const glm::vec2 a = uvs[idx[1]] - uvs[idx[0]];
+  const glm::vec2 b = uvs[idx[2]] - uvs[idx[0]];
   return 0.5f * std::abs(a.x * b.y - a.y * b.x);
+}
+
+glm::vec2 slot_uv(const scene::Mesh& mesh, const scene::TextureSlot& slot, int prim, const glm::vec3& w) {
+  const std::vector<glm::vec2>& uvs = mesh.uv_set(slot.texcoord);
+  glm::vec2 uv(0.0f);
+  if (uvs.size() == mesh.positions.size()) {
+    const std::uint32_t* idx = &mesh.indices[static_cast<std::size_t>(prim) * 3];
+    uv = uvs[idx[0]] * w.x + uvs[idx[1]] * w.y + uvs[idx[2]] * w.z;
+  }
+  return slot.transform.apply(uv);
+}
+
+glm::vec4 vertex_color(const scene::Mesh& mesh, int prim, const glm::vec3& w) {
+  if (mesh.colors.size() != mesh.positions.size()) return glm::vec4(1.0f);
+  const std::uint32_t* idx = &mesh.indices[static_cast<std::size_t>(prim) * 3];
+  return mesh.colors[idx[0]] * w.x + mesh.colors[idx[1]] * w.y + mesh.colors[idx[2]] * w.z;
 }
 
 float alpha_at(const scene::Material& material, const TextureSet& textures, const scene::Mesh& mesh, int prim,
                float u, float v, float lod) {
-  float alpha = material.base_color.a;
-  const MipTexture* tex = textures.get(material.base_color_texture.texture);
-  if (tex != nullptr && mesh.uvs.size() == mesh.positions.size()) {
-    const std::uint32_t* idx = &mesh.indices[static_cast<std::size_t>(prim) * 3];
-    alpha *=
-        tex->sample(interpolate(mesh.uvs, idx, u, v), lod, false, wrap_of(material.base_color_texture)).a;
+  const glm::vec3 w(1.0f - u - v, u, v);
+  float alpha = material.base_color.a * vertex_color(mesh, prim, w).a;
+  if (const MipTexture* tex = textures.get(material.base_color_texture.texture)) {
+    const glm::vec2 uv = slot_uv(mesh, material.base_color_texture, prim, w);
+    alpha *= tex->sample(uv, lod, false, wrap_of(material.base_color_texture)).a;
   }
   return alpha;
 }
@@ -107,14 +130,19 @@ SurfacePoint make_surface_point(const HitInput& hit, const TextureSet& textures)
 
   LodRule rule;
   rule.fixed = hit.fixed_mip_level;
-  if (rule.fixed < 0) {
-    rule.log2_uv_footprint =
-        MipTexture::footprint_log2(hit.cone_width, glm::dot(sp.ng, wo), uv_area(mesh, hit.prim), tri.area());
-  }
+  rule.cone_width = hit.cone_width;
+  rule.cos_theta = glm::dot(sp.ng, wo);
+  rule.world_area = tri.area();
+  rule.mesh = &mesh;
+  rule.prim = hit.prim;
+  const glm::vec3 weights(1.0f - u - v, u, v);
+  auto lookup = [&](const MipTexture& tex, const scene::TextureSlot& slot, bool srgb) {
+    return tex.sample(slot_uv(mesh, slot, hit.prim, weights), rule.lod(tex, slot), srgb, wrap_of(slot));
+  };
 
   if (const MipTexture* tex = textures.get(mat.normal_texture.texture)) {
     const glm::vec3 c =
-        glm::vec3(tex->sample(sp.uv, rule.lod(*tex), false, wrap_of(mat.normal_texture))) * 2.0f - 1.0f;
+        glm::vec3(lookup(*tex, mat.normal_texture, false)) * 2.0f - 1.0f;
     const glm::vec3 ts(c.x * mat.normal_scale, c.y * mat.normal_scale, c.z);
     n = safe_normalize(frame.t * ts.x + frame.b * ts.y + frame.n * ts.z, n);
   }
@@ -138,25 +166,28 @@ SurfacePoint make_surface_point(const HitInput& hit, const TextureSet& textures)
     sp.shading = Frame::from_normal(n);
   }
 
-  glm::vec4 base = mat.base_color;
+  // COLOR_0 multiplies the base colour factor and texture (glTF).
+  glm::vec4 base = mat.base_color * vertex_color(mesh, hit.prim, weights);
   if (const MipTexture* tex = textures.get(mat.base_color_texture.texture)) {
-    base *= tex->sample(sp.uv, rule.lod(*tex), true, wrap_of(mat.base_color_texture));
+    base *= lookup(*tex, mat.base_color_texture, true);
   }
   float metallic = mat.metallic;
   float roughness = mat.roughness;
   if (const MipTexture* tex = textures.get(mat.metallic_roughness_texture.texture)) {
-    const glm::vec4 mr = tex->sample(sp.uv, rule.lod(*tex), false, wrap_of(mat.metallic_roughness_texture));
+    const glm::vec4 mr = lookup(*tex, mat.metallic_roughness_texture, false);
     roughness *= mr.g;
     metallic *= mr.b;
   }
   sp.bsdf.base_color = glm::clamp(glm::vec3(base), 0.0f, 1.0f);
   sp.bsdf.metallic = std::clamp(metallic, 0.0f, 1.0f);
   sp.bsdf.roughness = std::clamp(roughness, 0.0f, 1.0f);
+  sp.bsdf.dielectric_f0 = mat.dielectric_f0();  // KHR_materials_ior / KHR_materials_specular
+  sp.bsdf.specular = mat.specular;
 
   if (mat.is_emissive() && !sp.backface) {
     glm::vec3 e = mat.emission();
     if (const MipTexture* tex = textures.get(mat.emissive_texture.texture)) {
-      e *= glm::vec3(tex->sample(sp.uv, rule.lod(*tex), true, wrap_of(mat.emissive_texture)));
+      e *= glm::vec3(lookup(*tex, mat.emissive_texture, true));
     }
     sp.emission = e;
   }

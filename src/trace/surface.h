@@ -1,6 +1,6 @@
 // From a ray hit to a shading point: world-space triangle, barycentric interpolation of normals,
-// UVs and tangents, textures looked up at the hit (base colour, metallic-roughness, emissive,
-// normal map), double-sided handling, and the self-intersection-safe ray offset. The occlusion
+// UVs (per texture slot: UV set and KHR_texture_transform), vertex colours and tangents,
+// textures looked up at the hit (base colour, metallic-roughness, emissive, normal map), double-sided handling, and the self-intersection-safe ray offset. The occlusion
 // texture is not read: it is ambient occlusion baked for rasterizers, and paths find occlusion
 // themselves.
 #pragma once
@@ -16,6 +16,7 @@ namespace ddish::scene {
 struct Scene;
 struct Mesh;
 struct Material;
+struct TextureSlot;
 }  // namespace ddish::scene
 
 namespace ddish::trace {
@@ -46,8 +47,15 @@ struct WorldTriangle {
 };
 WorldTriangle world_triangle(const scene::Mesh& mesh, const glm::mat4& xf, int prim);
 
-// UV area of a triangle (for mip selection: texels per metre).
-float uv_area(const scene::Mesh& mesh, int prim);
+// UV area of a triangle in UV set `texcoord` (for mip selection: texels per metre).
+float uv_area(const scene::Mesh& mesh, int prim, int texcoord = 0);
+
+// The texture coordinate a slot reads at a point of triangle `prim` with vertex weights w
+// (w0 + w1 + w2 = 1): its UV set interpolated, then its KHR_texture_transform.
+glm::vec2 slot_uv(const scene::Mesh& mesh, const scene::TextureSlot& slot, int prim, const glm::vec3& w);
+
+// COLOR_0 at a point of triangle `prim` with vertex weights w; white without vertex colours.
+glm::vec4 vertex_color(const scene::Mesh& mesh, int prim, const glm::vec3& w);
 
 // Base-colour alpha (factor × texture) at barycentrics (u, v) of a triangle, for alpha testing.
 float alpha_at(const scene::Material& material, const TextureSet& textures, const scene::Mesh& mesh, int prim,

@@ -116,9 +116,15 @@ glm::vec4 MipTexture::texel(int level, int x, int y, bool srgb, Wrap wrap) const
                 srgb);
 }
 
-glm::vec4 MipTexture::sample_level(glm::vec2 uv, int level, bool srgb, Wrap wrap) const {
+glm::vec4 MipTexture::sample_level(glm::vec2 uv, int level, bool srgb, Wrap wrap,
+                                   scene::Filter filter) const {
   const Level& l = levels_[static_cast<std::size_t>(level)];
   uv = {reduce(uv.x, wrap.s), reduce(uv.y, wrap.t)};
+  if (filter == scene::Filter::Nearest) {  // the texel whose square holds uv
+    const auto x = static_cast<int>(std::floor(uv.x * static_cast<float>(l.width)));
+    const auto y = static_cast<int>(std::floor(uv.y * static_cast<float>(l.height)));
+    return texel(level, x, y, srgb, wrap);
+  }
   // Texel centres sit at half-integers.
   const float fx = uv.x * static_cast<float>(l.width) - 0.5f;
   const float fy = uv.y * static_cast<float>(l.height) - 0.5f;
@@ -142,11 +148,20 @@ glm::vec4 MipTexture::sample_level(glm::vec2 uv, int level, bool srgb, Wrap wrap
 glm::vec4 MipTexture::sample(glm::vec2 uv, float lod, bool srgb, Wrap wrap) const {
   const float max_level = static_cast<float>(levels() - 1);
   lod = std::isfinite(lod) ? std::clamp(lod, 0.0f, max_level) : 0.0f;
+  if (lod <= 0.0f) return sample_level(uv, 0, srgb, wrap, wrap.mag);
+  switch (wrap.mip) {
+    case scene::MipFilter::None:
+      return sample_level(uv, 0, srgb, wrap, wrap.min);
+    case scene::MipFilter::Nearest:  // Vulkan's nearest level: floor(lod + 0.5)
+      return sample_level(uv, static_cast<int>(std::floor(lod + 0.5f)), srgb, wrap, wrap.min);
+    case scene::MipFilter::Linear:
+      break;
+  }
   const int l0 = static_cast<int>(lod);
   const float t = lod - static_cast<float>(l0);
-  const glm::vec4 a = sample_level(uv, l0, srgb, wrap);
+  const glm::vec4 a = sample_level(uv, l0, srgb, wrap, wrap.min);
   if (t <= 0.0f || l0 + 1 >= levels()) return a;
-  return glm::mix(a, sample_level(uv, l0 + 1, srgb, wrap), t);
+  return glm::mix(a, sample_level(uv, l0 + 1, srgb, wrap, wrap.min), t);
 }
 
 float MipTexture::footprint_log2(float width, float cos_theta, float uv_area, float world_area) {

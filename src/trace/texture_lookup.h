@@ -1,6 +1,6 @@
 // Material textures as the tracer samples them: a box-filtered RGBA8 mip chain per scene texture,
-// trilinear lookups with the glTF sampler's addressing (repeat, clamp, mirrored repeat), and sRGB
-// decoding per texel before filtering (so filtered colours are averages of linear values, as the
+// lookups with the glTF sampler's filters (trilinear by default) and addressing (repeat, clamp,
+// mirrored repeat), and sRGB decoding per texel before filtering (so filtered colours are averages of linear values, as the
 // GPU's sRGB formats do). Mips stay RGBA8 to keep memory sane on texture-heavy scenes (Sponza: 49
 // textures of up to 2048²): level 0 is the scene's own pixel data, the smaller levels add a third.
 #pragma once
@@ -16,10 +16,14 @@
 
 namespace ddish::trace {
 
-// Addressing outside [0, 1] in u (s) and v (t).
+// Addressing outside [0, 1] in u (s) and v (t), and the glTF sampler's filters: `mag` where the
+// footprint is under a texel (lod <= 0), `min` and `mip` where it is larger (mip None: level 0).
 struct TextureWrap {
   scene::Wrap s = scene::Wrap::Repeat;
   scene::Wrap t = scene::Wrap::Repeat;
+  scene::Filter mag = scene::Filter::Linear;
+  scene::Filter min = scene::Filter::Linear;
+  scene::MipFilter mip = scene::MipFilter::Linear;
 };
 
 class MipTexture {
@@ -35,11 +39,15 @@ class MipTexture {
 
   using Wrap = TextureWrap;
 
-  // Trilinear lookup: bilinear in the two levels around lod, linear between them. lod is
-  // clamped to [0, levels-1]. srgb: decode colour channels from sRGB first (alpha stays linear).
+  // Filtered lookup as a GPU sampler does it: lod <= 0 is magnification (wrap.mag at level 0);
+  // above, wrap.min within a level and wrap.mip between levels (Linear: the two levels around
+  // lod, blended; Nearest: the level nearest lod; None: level 0). The defaults are trilinear.
+  // lod is clamped to [0, levels-1]. srgb: decode colour channels from sRGB first (alpha stays
+  // linear).
   glm::vec4 sample(glm::vec2 uv, float lod, bool srgb, Wrap wrap = {}) const;
-  // One level, bilinear.
-  glm::vec4 sample_level(glm::vec2 uv, int level, bool srgb, Wrap wrap = {}) const;
+  // One level, bilinear (or the nearest texel with filter Nearest).
+  glm::vec4 sample_level(glm::vec2 uv, int level, bool srgb, Wrap wrap = {},
+                         scene::Filter filter = scene::Filter::Linear) const;
   // One texel of one level, unfiltered; x and y are addressed by `wrap`.
   glm::vec4 texel(int level, int x, int y, bool srgb, Wrap wrap = {}) const;
 
@@ -66,7 +74,9 @@ class MipTexture {
 };
 
 // A material slot's addressing.
-inline TextureWrap wrap_of(const scene::TextureSlot& slot) { return {slot.wrap_s, slot.wrap_t}; }
+inline TextureWrap wrap_of(const scene::TextureSlot& slot) {
+  return {slot.wrap_s, slot.wrap_t, slot.mag_filter, slot.min_filter, slot.mip_filter};
+}
 
 // sRGB transfer function (IEC 61966-2-1), 8-bit code → linear, by table.
 float srgb_to_linear(std::uint8_t code);

@@ -201,6 +201,27 @@ TEST_F(ServeView, CurveServesListedKeysOnly) {
   EXPECT_TRUE(wait_for(dir_ / "serve", "refused a client whose key is not allowed", 5.0)) << cli::slurp(dir_ / "serve");
 }
 
+// --client-budget-ms: the tick's budget is one client's per connected client (at least one),
+// capped by --budget-ms; the tick records say which budget each update had.
+TEST_F(ServeView, ClientBudgetScalesWithClientsWithinTheTickBudget) {
+  for (const auto& [extra, expected] : {std::pair{std::string("--client-budget-ms 7"), 7.0},
+                                        std::pair{std::string("--client-budget-ms 7 --budget-ms 5"), 5.0},
+                                        std::pair{std::string("--budget-ms 6"), 6.0}}) {
+    const std::string t = (dir_ / "t.json").string();
+    const cli::Result r = run("serve " + cli::cornell() + " --grid 4,4,4 --probe-samples 32 --bounces 4 --frames 3 "
+                              "--seconds 4 --bind " + address(9) + " --timings " + quote(t) + " " + extra);
+    ASSERT_EQ(r.code, 0) << r.err;
+    int updated = 0;
+    const nlohmann::json record = timings("t.json");
+    for (const auto& tick : record["ticks"])
+      if (tick["updated"].get<bool>()) {
+        EXPECT_DOUBLE_EQ(tick["budget_ms"].get<double>(), expected) << extra;
+        ++updated;
+      }
+    EXPECT_GE(updated, 1) << extra;  // --seconds may end a slow (sanitizer) run before all 3
+  }
+}
+
 TEST_F(ServeView, BadOptionsExitTwoWithOneLine) {
   const std::string scene = cli::cornell();
   for (const std::string& args :
@@ -209,6 +230,7 @@ TEST_F(ServeView, BadOptionsExitTwoWithOneLine) {
         "serve " + scene + " --bind tcp://127.0.0.1:65535 --seconds 1",
         "serve " + scene + " --encoding fp8 --seconds 1",
         "serve " + scene + " --delta-threshold -1 --seconds 1",
+        "serve " + scene + " --client-budget-ms -2 --seconds 1",
         "view " + scene + " --connect nowhere",
         "view " + scene + " --connect tcp://127.0.0.1:5570 --stale-ms 0",
         "serve " + scene + " --curve-secret " + scene + " --seconds 1",

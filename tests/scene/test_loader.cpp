@@ -85,10 +85,10 @@ TEST(Loader, NonIndexedPrimitiveGetsIndicesNormalsAndTangents) {
   ASSERT_EQ(m.normals.size(), 6u);
   ASSERT_EQ(m.tangents.size(), 6u);
   expect_vec3(m.normals[0], 0, 0, 1);
-  // u grows along +x, v (glTF: down the image) grows along -y: tangent +x, bitangent -y,
-  // so B = w cross(N, T) = w (0,1,0) needs w = -1.
+  // u grows along +x, v (glTF: down the image) grows along -y: tangent +x, and MikkTSpace's
+  // bitangent points up the image (-v, the normal map's +Y), +y = cross(N, T): w = +1.
   expect_vec3(glm::vec3(m.tangents[0]), 1, 0, 0);
-  EXPECT_EQ(m.tangents[0].w, -1.0f);
+  EXPECT_EQ(m.tangents[0].w, 1.0f);
 }
 
 TEST(Loader, MaterialsLightsCamerasAndTextures) {
@@ -119,7 +119,7 @@ TEST(Loader, MaterialsLightsCamerasAndTextures) {
        {"doubleSided", true},
        {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 12}}}}}}};
   b.doc["extensionsUsed"] = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                             "KHR_texture_transform"};
+                             "KHR_materials_sheen"};
   b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {
       {{"type", "spot"},
        {"name", "spot"},
@@ -155,7 +155,7 @@ TEST(Loader, MaterialsLightsCamerasAndTextures) {
   EXPECT_EQ(m.base_color_texture.wrap_s, scene::Wrap::ClampToEdge);
   EXPECT_EQ(m.base_color_texture.wrap_t, scene::Wrap::MirroredRepeat);
   ASSERT_EQ(sc.warnings.size(), 1u);  // the optional extension ddish ignores
-  EXPECT_NE(sc.warnings[0].find("KHR_texture_transform"), std::string::npos);
+  EXPECT_NE(sc.warnings[0].find("KHR_materials_sheen"), std::string::npos);
   ASSERT_EQ(sc.textures.size(), 1u);
   ASSERT_EQ(sc.textures[0].width, 2);
   ASSERT_EQ(sc.textures[0].rgba8.size(), 8u);

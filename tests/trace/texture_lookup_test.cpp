@@ -77,6 +77,44 @@ TEST(MipTexture, SamplerWrapModes) {
   EXPECT_NEAR(mip.sample_level({2.0f, 0.5f}, 0, false, mirror).r, 0.0f, 1e-6f);
 }
 
+// glTF sampler filters: magnification (lod <= 0) by magFilter, minification by minFilter and its
+// mipmap mode. A 4 x 1 ramp 0, 1/3, 2/3, 1 (level 1: 1/6, 5/6; level 2: 1/2).
+TEST(MipTexture, SamplerFilterModes) {
+  const scene::Texture t = testing::solid_texture(4, 1, [](int x, int) {
+    const auto v = static_cast<std::uint8_t>(85 * x);
+    return glm::u8vec4(v, v, v, 255);
+  });
+  const MipTexture mip(t);
+  ASSERT_EQ(mip.levels(), 3);
+  using scene::Filter;
+  using scene::MipFilter;
+  auto modes = [](Filter mag, Filter min, MipFilter mip_mode) {
+    return MipTexture::Wrap{scene::Wrap::ClampToEdge, scene::Wrap::ClampToEdge, mag, min, mip_mode};
+  };
+  const float u = 0.3f;  // between texel centres 0.125 and 0.375: 0.7 of the way to texel 1
+  // Magnification: nearest is texel 1 (u * 4 = 1.2), linear blends texels 0 and 1.
+  EXPECT_NEAR(mip.sample({u, 0.5f}, -1.0f, false, modes(Filter::Nearest, Filter::Linear, MipFilter::Linear)).r,
+              85.0f / 255.0f, 1e-6f);
+  EXPECT_NEAR(mip.sample({u, 0.5f}, -1.0f, false, modes(Filter::Linear, Filter::Nearest, MipFilter::None)).r,
+              0.7f * 85.0f / 255.0f, 1e-5f);
+  // Minification at lod 0.75: no mipmaps reads level 0 (with the min filter), nearest mipmap
+  // reads level 1 (floor(0.75 + 0.5)), linear blends levels 0 and 1 by 0.75.
+  const float level0_nearest = 85.0f / 255.0f;
+  EXPECT_NEAR(mip.sample({u, 0.5f}, 0.75f, false, modes(Filter::Linear, Filter::Nearest, MipFilter::None)).r,
+              level0_nearest, 1e-6f);
+  const float level1_texel0 = mip.texel(1, 0, 0, false).r;  // (0 + 85 + 1) / 2 rounded: 43
+  EXPECT_NEAR(mip.sample({u, 0.5f}, 0.75f, false, modes(Filter::Linear, Filter::Nearest, MipFilter::Nearest)).r,
+              level1_texel0, 1e-6f);
+  const float level1_linear =
+      mip.sample_level({u, 0.5f}, 1, false, modes(Filter::Linear, Filter::Linear, MipFilter::Linear)).r;
+  const float level0_linear = mip.sample_level({u, 0.5f}, 0, false, modes(Filter::Linear, Filter::Linear, MipFilter::Linear)).r;
+  EXPECT_NEAR(mip.sample({u, 0.5f}, 0.75f, false, modes(Filter::Linear, Filter::Linear, MipFilter::Linear)).r,
+              level0_linear + 0.75f * (level1_linear - level0_linear), 1e-6f);
+  // At lod 0.25 nearest mipmap stays on level 0.
+  EXPECT_NEAR(mip.sample({u, 0.5f}, 0.25f, false, modes(Filter::Linear, Filter::Nearest, MipFilter::Nearest)).r,
+              level0_nearest, 1e-6f);
+}
+
 TEST(MipTexture, LevelFromFootprint) {
   const scene::Texture t = testing::solid_texture(256, 256, [](int, int) { return glm::u8vec4(1); });
   const MipTexture mip(t);

@@ -1,0 +1,273 @@
+// ddish xr SCENE [--connect tcp://HOST:PORT [--probes FILE] [--wait-ms MS] ...] [--frames N]
+//                [--camera NODE|eye,target,up] [probe, schedule, lighting and raster options]
+//                [--warmup-ms MS] [--warmup-samples N] [--timings FILE]
+//
+// Stereo through OpenXR: the system loader's runtime (XR_RUNTIME_JSON, else the active runtime)
+// creates the Vulkan instance and device (XR_KHR_vulkan_enable2), the session runs its state
+// machine, and each frame the located eyes are rendered by the same frame loop as `render`, with
+// the probes in-process (the scheduler's budget is the runtime's display period less the
+// measured rest of the frame) or streamed from a `ddish serve` (--connect, as `ddish view`). The
+// views are copied on the GPU into the swapchain images. The headset's LOCAL space sits at the
+// scene's camera (--camera, else the scene's or the framing camera): its origin at the camera's
+// eye, looking along its forward. Runs until the runtime ends the session, or --frames N
+// rendered frames (then it asks the runtime to end). With DDISH_VALIDATION=1 the OpenXR core
+// validation layer and the Vulkan validation layer are on; any message of either exits 1.
+// No runtime: one line naming XR_RUNTIME_JSON and active_runtime.json, exit 2. A lost session
+// (LOSS_PENDING): everything is destroyed, one line, exit 1.
+#include <algorithm>
+#include <climits>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "app/camera_options.h"
+#include "app/commands.h"
+#include "app/frame_loop.h"
+#include "app/interrupt.h"
+#include "app/lighting_options.h"
+#include "app/probe_options.h"
+#include "app/probe_setup.h"
+#include "app/render_timings.h"
+#include "app/scene_identity.h"
+#include "app/schedule_options.h"
+#include "app/warmup_options.h"
+#include "app/xr_frames.h"
+#include "display/view_set.h"
+#include "gpu/context.h"
+#include "io/atomic_file.h"
+#include "net/endpoint.h"
+#include "raster/renderer.h"
+#include "raster/tonemap.h"
+#include "scene/gltf_loader.h"
+#include "scene/scene.h"
+#include "xr/instance.h"
+#include "xr/session.h"
+#include "xr/vulkan_binding.h"
+
+namespace ddish::app {
+namespace {
+
+struct XrArgs {
+  std::string scene;
+  CameraArgs view;
+  ProbeArgs probe;
+  ScheduleArgs schedule;
+  LightingArgs lighting;
+  StreamArgs stream;
+  WarmupOptions warmup;
+  int frames = 0;  // 0: until the runtime ends the session
+  std::string timings;
+  std::uint32_t msaa = 0;
+  std::string tonemap = "filmic";
+  bool no_indirect = false;
+};
+
+void check(const XrArgs& a) {
+  check_probe_options(a.probe);
+  check_schedule_options(a.schedule);
+  check_warmup_options(a.warmup);
+  sky_radiance(a.lighting);
+  parse_pose(a.view.camera);
+  raster::parse_tone_curve(a.tonemap);
+  if (a.frames < 0) throw std::invalid_argument("--frames must be >= 0 (0: until the runtime ends the session)");
+  if (!a.stream.connect.empty()) net::parse_endpoint(a.stream.connect);
+  if (a.stream.curve_server_key.empty() != a.stream.curve_secret.empty())
+    throw std::invalid_argument("--curve-server-key and --curve-secret go together");
+  if (a.msaa != 0 && a.msaa != 1 && a.msaa != 2 && a.msaa != 4 && a.msaa != 8 && a.msaa != 16)
+    throw std::invalid_argument(fmt::format("--msaa must be 1, 2, 4, 8 or 16, got {}", a.msaa));
+}
+
+struct XrRun {
+  FrameLoopResult result;
+  std::vector<XrFrameRecord> records;
+  nlohmann::ordered_json records_json;
+  bool lost = false;
+  std::uint32_t xr_messages = 0;
+  bool validation = false;
+  std::shared_ptr<const gpu::ValidationLog> vulkan_log;
+  int eye_width = 0, eye_height = 0;
+  std::vector<std::string> states;
+};
+
+// Everything with OpenXR or Vulkan handles lives in here, destroyed in order before it returns.
+XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, std::uint64_t identity) {
+  XrRun run;
+  const bool validation = gpu::validation_requested_by_environment();
+  xr::Instance xri({.application_name = "ddish", .validation = validation});
+  const auto eyes = xri.recommended();
+  if (eyes[0].width != eyes[1].width || eyes[0].height != eyes[1].height)
+    throw std::runtime_error(fmt::format("xr: the eyes' recommended sizes differ ({}x{}, {}x{})", eyes[0].width,
+                                         eyes[0].height, eyes[1].width, eyes[1].height));
+  run.eye_width = static_cast<int>(eyes[0].width);
+  run.eye_height = static_cast<int>(eyes[0].height);
+  std::fprintf(stderr, "xr: runtime %s, system %s, eyes %ux%u%s\n", xri.runtime_name().c_str(),
+               xri.system_name().c_str(), eyes[0].width, eyes[0].height,
+               xri.validation_enabled() ? ", OpenXR core validation on" : "");
+
+  const bool remote = !a.stream.connect.empty();
+  // The budget comes from the runtime each frame; --budget-ms fixes it instead (0: none).
+  std::unique_ptr<InProcessParts> local;
+  if (!remote) local = make_in_process(a.probe, a.schedule, s, a.schedule.budget_ms.value_or(0.0));
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream.baked, placement)
+                                      : probes::ProbeVolume(placement.grid, a.probe.sh_order);
+  {
+    gpu::ContextOptions co;
+    co.validation = validation;
+    xr::bind_vulkan(xri, co);
+    gpu::Context gpu(co);
+    run.validation = gpu.instance().validation_enabled();
+    run.vulkan_log = gpu.instance().shared_validation();
+    raster::RendererOptions ro;
+    ro.msaa = a.msaa;
+    ro.tone_curve = raster::parse_tone_curve(a.tonemap);
+    ro.exposure = exposure_scale(a.lighting);
+    ro.probes = !a.no_indirect;
+    raster::Renderer renderer(gpu.device(), s, volume, ro);
+    std::fprintf(stderr, "xr: %s, %zu triangles on %s; probes %dx%dx%d (%s), L%d, %u samples/pixel\n",
+                 s.path.c_str(), s.triangle_count(), gpu.device().info().name.c_str(), placement.grid.counts().x,
+                 placement.grid.counts().y, placement.grid.counts().z, placement.how.c_str(), renderer.sh_order(),
+                 renderer.samples());
+    const std::unique_ptr<ProbeSource> probes =
+        make_probe_source(local.get(), a.probe, a.schedule, a.stream, volume, identity, "xr");
+
+    xr::Session session(xri, gpu.device());
+    const scene::Camera camera = resolve_camera(s, a.view);
+    const display::BaseCamera origin =
+        display::base_camera(camera, display::focal_distance_to_scene_center(s, camera.eye, camera.forward));
+    XrFrames frames(session, origin, a.schedule.budget_ms);
+
+    FrameLoop loop(s, *probes, renderer, [&](const scene::Scene&) { return frames.views(); });
+    FrameLoopOptions options;
+    options.frames = a.frames > 0 ? a.frames : INT_MAX;
+    options.fps = 90.0;  // scene time advances 1/90 s a frame
+    options.every = true;  // every frame goes to the headset
+    options.stop = &stop_flag();
+    options.update_probes = !a.no_indirect;
+    options.warmup = a.warmup;
+    options.render_request.read_back = false;
+    options.render_request.after_batch = [&](VkCommandBuffer cmd, const raster::BatchViews& b) { frames.after_batch(cmd, b); };
+    options.pacer = [&](int k) { return frames.pace(k); };
+    const FrameSink sink = [&](int k, raster::FrameOutput&) {
+      frames.submit(k);
+      return std::vector<std::filesystem::path>{};
+    };
+    run.result = loop.run(options, sink, [&](const FrameReport& r) {
+      if (r.warmup && r.warmup->rounds > 0) std::fprintf(stderr, "xr: %s\n", describe_warmup(*r.warmup, a.warmup).c_str());
+      const XrFrameRecord& x = frames.records().back();
+      std::fprintf(stderr,
+                   "frame %d: probes %.1f ms (%u traced at %u samples), raster %.1f ms, frame %.1f ms of period "
+                   "%.2f ms (budget %.2f ms), pose to submit %.1f ms, waited %.1f ms%s\n",
+                   r.frame + 1, r.timings->stage_ms("probe_update"), r.counts.probes_traced,
+                   r.counts.schedule.samples_per_probe, raster_ms(*r.timings), x.frame_ms, x.period_ms, x.budget_ms,
+                   x.pose_to_submit_ms, x.wait_ms, x.skipped_before ? fmt::format(", {} not rendered before", x.skipped_before).c_str() : "");
+    });
+    if (!session.lost()) frames.finish();
+    run.lost = session.lost();
+    run.records = frames.records();
+    run.records_json = frames.records_json();
+    run.states = session.states();
+    gpu.device().wait_idle();
+  }  // session, renderer, device, Vulkan instance: gone before the OpenXR instance
+  run.xr_messages = xri.validation_messages();
+  return run;
+}
+
+void write_xr_timings(const std::string& path, const XrRun& run) {
+  display::ViewSet set;
+  set.kind = display::ViewSetKind::Stereo;
+  set.name = "openxr";
+  set.layout = display::layout_from_tiles(2, 1, run.eye_width, run.eye_height);
+  nlohmann::ordered_json doc = render_timings_json(run.result.timings, run.result.counts, set);
+  doc["xr"] = run.records_json;
+  io::write_file_atomically(path, doc.dump(2) + '\n');
+}
+
+int run_xr(const XrArgs& a) {
+  check(a);
+  if (!a.timings.empty()) io::check_writable_file(a.timings);
+  scene::Scene s = scene::load_scene(a.scene);
+  const std::uint64_t geometry = geometry_identity(s);
+  s.pose(0.0);
+  const std::string framing = frame_camera_less(s, a.view, 0.9f);
+  const std::string environment = apply_lighting(s, a.lighting);
+  const Placement placement = place_probes(a.probe, s);
+  if (!framing.empty()) std::fprintf(stderr, "xr: %s\n", framing.c_str());
+  std::fprintf(stderr, "xr: %s\n", environment.c_str());
+  allow_graceful_stop();
+  const XrRun run = run_session(a, s, placement, scene_identity(geometry, placement.grid, a.probe.sh_order));
+
+  const std::size_t n = run.records.size();
+  const auto within = std::count_if(run.records.begin(), run.records.end(), [](const XrFrameRecord& r) { return r.within_period(); });
+  std::vector<double> latency;
+  for (const XrFrameRecord& r : run.records) latency.push_back(r.pose_to_submit_ms);
+  std::sort(latency.begin(), latency.end());
+  std::string states;
+  for (const std::string& st : run.states) states += (states.empty() ? "" : " ") + st;
+  std::fprintf(stderr, "xr: %zu frames rendered, %zu within the display period; pose to submit median %.1f ms; session %s\n",
+               n, static_cast<std::size_t>(within), latency.empty() ? 0.0 : latency[latency.size() / 2], states.c_str());
+  if (!a.timings.empty()) {
+    write_xr_timings(a.timings, run);
+    std::printf("wrote %s\n", a.timings.c_str());
+  }
+  int code = 0;
+  if (run.validation || run.xr_messages > 0) {
+    const std::uint32_t vk = run.vulkan_log ? run.vulkan_log->errors() : 0;
+    std::fprintf(stderr, "xr: validation: %u OpenXR messages, %u Vulkan errors, %u Vulkan warnings\n", run.xr_messages,
+                 vk, run.vulkan_log ? run.vulkan_log->warnings() : 0);
+    if (vk > 0 || run.xr_messages > 0) {
+      std::fprintf(stderr, "ddish: error: validation reported %u OpenXR and %u Vulkan messages\n", run.xr_messages, vk);
+      code = 1;
+    }
+  }
+  if (run.lost) {
+    std::fprintf(stderr, "ddish: error: xr: the runtime lost the session (LOSS_PENDING) after %zu frames\n", n);
+    return 1;
+  }
+  if (run.result.stopped) return interrupted_exit_code(stop_signal());
+  return code;
+}
+
+Action make_xr(CLI::App& root) {
+  auto a = std::make_shared<XrArgs>();
+  CLI::App* cmd = root.add_subcommand("xr", "stereo through OpenXR: the runtime's eyes, poses and frame timing");
+  cmd->add_option("scene", a->scene, "glTF 2.0 scene (.gltf or .glb)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--camera", a->view.camera,
+                  "where the headset's LOCAL space sits: a camera NODE or eye,target,up (default: the scene's camera)");
+  cmd->add_option("--frames", a->frames, "rendered frames, then the session ends; 0: until the runtime ends it")
+      ->capture_default_str();
+  cmd->add_option("--timings", a->timings, "write per-frame stage milliseconds and the OpenXR frame records as JSON here");
+  cmd->add_option("--msaa", a->msaa, "samples per pixel (default: 4 where supported, else 1)");
+  cmd->add_option("--tonemap", a->tonemap, "display curve: linear or filmic (ACES fit)")->capture_default_str();
+  cmd->add_flag("--no-indirect", a->no_indirect, "direct light only: the probes are neither traced nor drawn");
+  cmd->add_option("--connect", a->stream.connect,
+                  "probes from a ddish serve at tcp://HOST:PORT (as ddish view) instead of in-process");
+  cmd->add_option("--probes", a->stream.baked, "with --connect: baked probes (ddish probes --out) until the server answers")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--wait-ms", a->stream.wait_ms, "with --connect: the first frame's wait for the server's snapshot")
+      ->capture_default_str();
+  cmd->add_option("--frame-wait-ms", a->stream.frame_wait_ms, "with --connect: each later frame's wait for the server")
+      ->capture_default_str();
+  cmd->add_option("--stale-ms", a->stream.stale_ms, "with --connect: no message for this long: the server is lost")
+      ->capture_default_str();
+  cmd->add_option("--curve-server-key", a->stream.curve_server_key, "with --connect: the server's public key (.pub)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--curve-secret", a->stream.curve_secret, "with --connect: this client's secret key (.key)")
+      ->check(CLI::ExistingFile);
+  add_probe_options(*cmd, a->probe);
+  add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
+  add_schedule_options(*cmd, a->schedule);
+  cmd->get_option("--budget-ms")
+      ->description("whole-frame time budget in ms (default: each frame's predicted display period from the runtime; 0: none)");
+  add_warmup_options(*cmd, a->warmup);
+  return [a]() { return run_xr(*a); };
+}
+
+}  // namespace
+
+DDISH_COMMAND(65, make_xr);
+
+}  // namespace ddish::app

@@ -1,0 +1,69 @@
+#include "app/probe_setup.h"
+
+#include <cstdio>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "app/remote_probes.h"
+#include "net/curve_keys.h"
+#include "probes/volume_file.h"
+
+namespace ddish::app {
+
+InProcessParts::InProcessParts(const ProbeArgs& probe, const ScheduleArgs& schedule, const scene::Scene& s,
+                               const trace::PathOptions& path, double budget)
+    : tracer(s, path),
+      source(tracer),
+      probe_tracer(source, update_options(probe)),
+      scheduler(scheduler_options(schedule, probe, budget)),
+      budget_ms(budget) {}
+
+std::unique_ptr<InProcessParts> make_in_process(const ProbeArgs& probe, const ScheduleArgs& schedule,
+                                                const scene::Scene& s, double budget_ms) {
+  trace::PathOptions path_options;
+  path_options.max_bounces = probe.bounces;
+  return std::make_unique<InProcessParts>(probe, schedule, s, path_options, budget_ms);
+}
+
+probes::ProbeVolume starting_volume(const ProbeArgs& probe, const std::string& baked, const Placement& placement) {
+  if (baked.empty()) return probes::ProbeVolume(placement.grid, probe.sh_order);
+  const probes::VolumeFile file = probes::read_volume_file(baked);
+  probes::ProbeVolume volume = file.to_volume();
+  if (volume.grid().counts() != placement.grid.counts() || volume.sh_order() != probe.sh_order)
+    throw std::invalid_argument(fmt::format(
+        "--probes {}: grid {}x{}x{} L{}, but this scene's probes are {}x{}x{} L{} (same --grid and --sh-order as the server)",
+        baked, volume.grid().counts().x, volume.grid().counts().y, volume.grid().counts().z,
+        volume.sh_order(), placement.grid.counts().x, placement.grid.counts().y,
+        placement.grid.counts().z, probe.sh_order));
+  return volume;
+}
+
+std::unique_ptr<ProbeSource> make_probe_source(InProcessParts* local, const ProbeArgs& probe,
+                                               const ScheduleArgs& schedule, const StreamArgs& stream,
+                                               probes::ProbeVolume& volume, std::uint64_t identity,
+                                               const char* tag) {
+  if (local) {
+    return std::make_unique<InProcessProbes>(
+        local->tracer, local->probe_tracer, local->scheduler,
+        [&probe, &schedule](const probes::FramePlan& plan) {
+          return frame_update_options(schedule, probe, plan.samples, plan.hysteresis);
+        },
+        volume);
+  }
+  net::ClientOptions co;
+  co.connect = stream.connect;
+  co.stale_ms = stream.stale_ms;
+  const std::string prefix = tag;
+  co.log = [prefix](const std::string& line) { std::fprintf(stderr, "%s: %s\n", prefix.c_str(), line.c_str()); };
+  if (!stream.curve_secret.empty()) {
+    const net::CurveKeyPair mine = net::read_secret_key(stream.curve_secret);
+    co.curve = net::CurveClientKeys{net::read_public_key(stream.curve_server_key), mine.public_z85, mine.secret_z85};
+  }
+  auto remote = std::make_unique<RemoteProbes>(co, volume, identity, stream.wait_ms, stream.frame_wait_ms);
+  std::fprintf(stderr, "%s: probes from %s (scene identity %016llx)\n", tag, stream.connect.c_str(),
+               static_cast<unsigned long long>(identity));
+  return remote;
+}
+
+}  // namespace ddish::app

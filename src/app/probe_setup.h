@@ -1,0 +1,60 @@
+// The probe seam as the commands build it from their options, shared by `render`, `view` and
+// `xr`: the in-process parts (path tracer, probe tracer, scheduler) or the probe stream's client
+// (app/remote_probes.h) with its starting volume.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "app/probe_options.h"
+#include "app/probe_source.h"
+#include "app/schedule_options.h"
+#include "probes/probe_tracer.h"
+#include "probes/probe_volume.h"
+#include "probes/scheduler.h"
+#include "probes/tracer_source.h"
+#include "trace/tracer.h"
+
+namespace ddish::app {
+
+// `--connect` and its companions (ddish view, ddish xr --connect).
+struct StreamArgs {
+  std::string connect;   // empty: in-process probes
+  std::string baked;     // --probes FILE: the probes until a server answers
+  int wait_ms = 2000;    // frame 0's wait for the server's snapshot
+  int stale_ms = 1000;   // no message for this long: the server is lost
+  int frame_wait_ms = 0;  // later frames' wait for the server's next frame
+  std::string curve_server_key;  // the server's .pub
+  std::string curve_secret;      // this client's .key
+};
+
+// The in-process probe half: path tracer, probe tracer, scheduler.
+struct InProcessParts {
+  trace::Tracer tracer;
+  probes::TracerSource source;
+  probes::ProbeTracer probe_tracer;
+  probes::Scheduler scheduler;
+  double budget_ms;
+  InProcessParts(const ProbeArgs& probe, const ScheduleArgs& schedule, const scene::Scene& s,
+                 const trace::PathOptions& path, double budget);
+};
+
+// The in-process parts for `probe` and `schedule` with a frame budget (0: none).
+std::unique_ptr<InProcessParts> make_in_process(const ProbeArgs& probe, const ScheduleArgs& schedule,
+                                                const scene::Scene& s, double budget_ms);
+
+// The stream client's starting probes: the --probes volume (same grid and order as the scene's
+// placement, or an error), else none (direct light only until a server answers).
+probes::ProbeVolume starting_volume(const ProbeArgs& probe, const std::string& baked,
+                                    const Placement& placement);
+
+// The frame loop's probe source: in-process over `local`, else the stream's client (`tag` names
+// the command in its log lines). Everything is borrowed.
+std::unique_ptr<ProbeSource> make_probe_source(InProcessParts* local, const ProbeArgs& probe,
+                                               const ScheduleArgs& schedule, const StreamArgs& stream,
+                                               probes::ProbeVolume& volume, std::uint64_t identity,
+                                               const char* tag);
+
+}  // namespace ddish::app

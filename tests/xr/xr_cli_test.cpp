@@ -1,0 +1,192 @@
+// `ddish xr` under the headless test runtime (tests/xr_runtime), through the system loader: what
+// the runtime recorded (session.json, each submitted eye as EXR) and what ddish said.
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "../app/cli_runner.h"
+#include "metrics/color.h"
+#include "metrics/image.h"
+#include "metrics/image_io.h"
+
+namespace {
+
+using nlohmann::json;
+
+// The stereo-hmd profile's per-eye angles (displays/stereo-hmd.json) at a small eye size.
+constexpr const char* kFov =
+    R"("fov_deg": {"left": {"left": -50, "right": 43, "up": 47, "down": -53},
+                   "right": {"left": -43, "right": 50, "up": 47, "down": -53}})";
+constexpr const char* kCamera = "0,1,3.4,0,1,0,0,1,0";
+
+int count_lines(const std::string& text, const std::string& prefix) {
+  int n = 0;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t end = text.find('\n', at);
+    if (text.compare(at, prefix.size(), prefix) == 0) ++n;
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return n;
+}
+
+class XrCli : public cli::TempDirTest {
+ protected:
+  XrCli() : TempDirTest("ddish_xr_") {}
+
+  // The runtime's script and environment for a run; the runtime writes under DIR/xr.
+  std::string runtime_env(const std::string& script) const {
+    std::ofstream(dir_ / "script.json") << script;
+    cli::fs::create_directories(dir_ / "xr");
+    return "XR_RUNTIME_JSON=" + cli::quote(DDISH_XR_RUNTIME_JSON) + " DDISH_XR_SCRIPT=" + path("script.json") +
+           " DDISH_XR_OUT=" + path("xr");
+  }
+  json session() const {
+    std::ifstream in(dir_ / "xr" / "session.json");
+    return json::parse(in);
+  }
+  static std::vector<json> rendered(const json& s) {
+    std::vector<json> out;
+    for (const json& f : s["frames"])
+      if (!f["submitted"].empty()) out.push_back(f);
+    return out;
+  }
+};
+
+TEST_F(XrCli, NoRuntimeIsOneLineNamingWhereTheLoaderLooksAndExitTwo) {
+  cli::fs::create_directories(dir_ / "config");
+  // No XR_RUNTIME_JSON and no active_runtime.json where the loader looks (an empty config home).
+  const cli::Result none = run("xr " + cli::cornell(), "env -u XR_RUNTIME_JSON XDG_CONFIG_HOME=" + path("config") +
+                                                           " XDG_CONFIG_DIRS=" + path("config"));
+  EXPECT_EQ(none.code, 2);
+  EXPECT_EQ(count_lines(none.err, "ddish: error: "), 1) << none.err;
+  EXPECT_NE(none.err.find("XR_RUNTIME_JSON"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("active_runtime.json"), std::string::npos) << none.err;
+  EXPECT_EQ(none.err.find("OpenXR-Loader"), std::string::npos) << "the loader's own log leaked: " << none.err;
+  const cli::Result missing = run("xr " + cli::cornell(), "XR_RUNTIME_JSON=" + cli::quote(DDISH_XR_MISSING_JSON));
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_EQ(count_lines(missing.err, "ddish: error: "), 1) << missing.err;
+  EXPECT_NE(missing.err.find(std::string("XR_RUNTIME_JSON=") + DDISH_XR_MISSING_JSON), std::string::npos) << missing.err;
+  EXPECT_EQ(count_lines(missing.err, ""), 2) << "one line of environment, one error: " << missing.err;
+}
+
+// 30 frames with the OpenXR core validation layer and the Vulkan validation layer on: no message
+// from either; every rendered frame submitted exactly the poses and FOVs it located; the session
+// ends through the app's request when --frames runs out.
+TEST_F(XrCli, ThirtyFramesUnderBothValidationLayersSubmitTheLocatedPoses) {
+  const std::string script = std::string(R"({"eye_width": 48, "eye_height": 54, )") + kFov +
+                             R"(, "keys": [{"frame": 0, "position": [0, 0, 0]},
+                                 {"frame": 30, "position": [0.2, 0.05, -0.1], "orientation": [0, 0.258819, 0, 0.9659258]}]})";
+  const cli::Result r = run("xr " + cli::cornell() + " --frames 30 --probe-samples 32 --warmup-ms 200 --warmup-samples 64",
+                            runtime_env(script) + " DDISH_VALIDATION=1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("OpenXR core validation on"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("xr: validation: 0 OpenXR messages, 0 Vulkan errors"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("xr: warm-up: "), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("VUID"), std::string::npos) << r.out;  // the layer's text output, if any
+  const json s = session();
+  const std::vector<json> frames = rendered(s);
+  ASSERT_EQ(frames.size(), 30u);
+  for (const json& f : frames) {
+    ASSERT_EQ(f["submitted"].size(), 2u);
+    EXPECT_EQ(f["submitted"], f["located"]) << "frame " << f["index"];
+    EXPECT_EQ(f["images"].size(), 2u);
+  }
+  // The head moved: the last frame's left eye is not where the first one's was.
+  EXPECT_NE(frames.front()["located"][0]["position"], frames.back()["located"][0]["position"]);
+  const std::vector<std::string> states = s["states"];
+  ASSERT_GE(states.size(), 3u);
+  EXPECT_EQ(std::vector<std::string>(states.end() - 3, states.end()),
+            (std::vector<std::string>{"STOPPING", "IDLE", "EXITING"}));
+}
+
+// The submitted eye images are `ddish render --display PROFILE --per-view` of the same eyes:
+// same poses (the headset's LOCAL origin at --camera), FOVs and probes (no budget, no warm-up:
+// both trace every active probe once at the same seed). Tolerance: at most 1 sRGB code in any
+// channel (the two paths decode the same bytes; measured: identical).
+TEST_F(XrCli, EachEyeEqualsRenderDisplayStereoForTheSamePosesAndProbes) {
+  const std::string script =
+      std::string(R"({"eye_width": 64, "eye_height": 72, "ipd": 0.063, "synchronized_frames": 1, )") + kFov + "}";
+  const std::string common = std::string(" --camera ") + kCamera + " --frames 1 --budget-ms 0 --warmup-ms 0 --probe-samples 64";
+  const cli::Result x = run("xr " + cli::cornell() + common, runtime_env(script));
+  ASSERT_EQ(x.code, 0) << x.err;
+  std::ofstream(dir_ / "hmd.json") << R"({"name": "test-hmd", "views": 2, "quilt": {"columns": 2, "rows": 1},
+    "tile": {"width": 64, "height": 72}, "refresh_hz": 90,
+    "camera": {"model": "stereo", "ipd_mm": 63, "eye_fov_deg": {"left": {"left": -50, "right": 43, "up": 47, "down": -53},
+               "right": {"left": -43, "right": 50, "up": 47, "down": -53}}}})";
+  const cli::Result r = run("render " + cli::cornell() + " --display " + path("hmd.json") + common + " --per-view --out " +
+                            path("render"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::vector<json> frames = rendered(session());
+  ASSERT_EQ(frames.size(), 1u);
+  for (int e = 0; e < 2; ++e) {
+    const auto xr_image = ddish::metrics::read_image(dir_ / "xr" / frames[0]["images"][e].get<std::string>());
+    const auto png = ddish::metrics::read_image(dir_ / "render" / ("view_" + std::to_string(e) + ".png"));
+    ASSERT_EQ(xr_image.width(), 64);
+    ASSERT_EQ(png.width(), xr_image.width());
+    ASSERT_EQ(png.height(), xr_image.height());
+    int worst = 0;
+    double sum = 0.0;
+    for (int y = 0; y < png.height(); ++y)
+      for (int x0 = 0; x0 < png.width(); ++x0)
+        for (int c = 0; c < 3; ++c) {
+          const int a = ddish::metrics::srgb8_encode(xr_image.at(x0, y)[c]);
+          const int b = ddish::metrics::srgb8_encode(png.at(x0, y)[c]);
+          worst = std::max(worst, std::abs(a - b));
+          sum += ddish::metrics::srgb8_encode(png.at(x0, y)[c]);
+        }
+    EXPECT_LE(worst, 1) << "eye " << e;
+    EXPECT_GT(sum / (64.0 * 72.0 * 3.0), 10.0) << "eye " << e << " is black: nothing compared";
+  }
+}
+
+TEST_F(XrCli, TheRuntimeEndsTheSessionAndTheRunEndsCleanly) {
+  const cli::Result r = run("xr " + cli::cornell() + " --frames 100 --probe-samples 32 --warmup-ms 0",
+                            runtime_env(std::string(R"({"eye_width": 32, "eye_height": 36, "stop_after": 8})")));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("xr: 7 frames rendered"), std::string::npos) << r.err;  // frame 0 only SYNCHRONIZED
+  const json s = session();
+  const std::vector<std::string> states = s["states"];
+  EXPECT_EQ(std::vector<std::string>(states.end() - 3, states.end()),
+            (std::vector<std::string>{"STOPPING", "IDLE", "EXITING"}));
+  EXPECT_EQ(rendered(s).size(), 7u);
+}
+
+TEST_F(XrCli, LossPendingIsOneLineAndNoLeak) {
+  const cli::Result r = run("xr " + cli::cornell() + " --frames 100 --probe-samples 32 --warmup-ms 0",
+                            runtime_env(R"({"eye_width": 32, "eye_height": 36, "loss_after": 5})") + " DDISH_VALIDATION=1");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(count_lines(r.err, "ddish: error: "), 1) << r.err;
+  EXPECT_NE(r.err.find("ddish: error: xr: the runtime lost the session (LOSS_PENDING) after 4 frames"), std::string::npos) << r.err;
+  // Validation watched every destruction: nothing left alive at vkDestroyDevice / vkDestroyInstance.
+  EXPECT_NE(r.err.find("xr: validation: 0 OpenXR messages, 0 Vulkan errors"), std::string::npos) << r.err;
+  const std::vector<std::string> states = session()["states"];
+  EXPECT_EQ(states.back(), "LOSS_PENDING");
+}
+
+// A display period switching from 90 Hz to 72 Hz at frame 20: the budget each frame hands the
+// scheduler is the frame's period, from the frame after the switch on (in the timings, both in
+// the xr records and in the scheduler's own record).
+TEST_F(XrCli, TheBudgetFollowsTheDisplayPeriod) {
+  const std::string script = R"({"eye_width": 32, "eye_height": 36, "synchronized_frames": 0,
+    "keys": [{"frame": 0, "display_hz": 90}, {"frame": 20, "display_hz": 72}]})";
+  const cli::Result r = run("xr " + cli::cornell() + " --frames 30 --probe-samples 32 --warmup-ms 0 --timings " +
+                                path("t.json"),
+                            runtime_env(script));
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(dir_ / "t.json");
+  const json t = json::parse(in);
+  ASSERT_EQ(t["xr"].size(), 30u);
+  ASSERT_EQ(t["frames"].size(), 30u);
+  for (int k = 0; k < 30; ++k) {
+    const double want = k < 20 ? 1000.0 / 90.0 : 1000.0 / 72.0;
+    EXPECT_NEAR(t["xr"][k]["predicted_display_period_ms"].get<double>(), want, 1e-3) << k;
+    EXPECT_NEAR(t["xr"][k]["budget_ms"].get<double>(), want, 1e-3) << k;
+    EXPECT_NEAR(t["frames"][k]["scheduler"]["budget_ms"].get<double>(), want, 1e-3) << k;
+  }
+}
+
+}  // namespace
