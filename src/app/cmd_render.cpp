@@ -56,6 +56,7 @@
 #include "app/frame_loop.h"
 #include "app/frame_outputs.h"
 #include "app/interrupt.h"
+#include "app/live_controls.h"
 #include "app/live_window.h"
 #include "app/lighting_options.h"
 #include "app/output_queue.h"
@@ -104,6 +105,7 @@ struct RenderArgs {
   int frames = 1;
   bool frames_given = false;  // --window without --frames runs until closed, writing no files
   LiveArgs live;
+  bool monitor_given = false;
   bool every = false;
   bool loop = false;
   double fps = 30.0;
@@ -130,7 +132,7 @@ struct RenderArgs {
 };
 
 void check(const RenderArgs& a) {
-  if (a.scene.empty()) throw std::invalid_argument("scene is required: a .gltf or .glb file");
+  if (a.scene.empty()) throw std::invalid_argument("scene is required (see ddish --help)");  // as CLI11 says it
   check_probe_options(a.probe);
   check_schedule_options(a.schedule);
   check_warmup_options(a.warmup);
@@ -138,11 +140,11 @@ void check(const RenderArgs& a) {
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
   if (a.frames < 1) throw std::invalid_argument("--frames must be at least 1");
-  if (!a.live.window && (a.live.monitor != 0 || a.live.fullscreen || a.live.mailbox || a.live.hold))
+  if (!a.live.window && (a.monitor_given || a.live.fullscreen || a.live.mailbox || a.live.hold))
     throw std::invalid_argument("--monitor, --fullscreen, --mailbox and --hold go with --window");
   if (a.live.hold && !a.frames_given)
     throw std::invalid_argument("--hold keeps the last of --frames N on screen: give --frames");
-  if (a.live.monitor < 0) throw std::invalid_argument("--monitor must be 0 or more");
+  if (a.monitor_given && a.live.monitor < 0) throw std::invalid_argument("--monitor must be 0 or more");
   if (a.live.window && !window::display_server_named())
     throw std::invalid_argument("--window needs a display server, and neither DISPLAY nor "
                                 "WAYLAND_DISPLAY is set; without --window ddish renders to files");
@@ -255,7 +257,9 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                                   s, start.eye, start.forward));
     live = std::make_unique<LiveWindow>(
         a.live, "ddish " + first.name, calibration ? calibration->screen_width : first.layout.width,
-        calibration ? calibration->screen_height : first.layout.height, start, focal);
+        calibration ? calibration->screen_height : first.layout.height,
+        choice.profile && choice.profile->panel ? choice.profile->panel->width : 0,
+        choice.profile && choice.profile->panel ? choice.profile->panel->height : 0, start, focal);
   }
   gpu::Context gpu({.device_index = a.device,
                     .instance_extensions = live ? live->instance_extensions() : std::vector<std::string>{},
@@ -277,9 +281,11 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     live->attach(gpu, first.layout, int(first.size()),
                  calibration ? std::optional(display::lenticular_mapping(*calibration)) : std::nullopt);
     attachment.live = live.get();
+    for (const std::string& m : window::Window::monitors())
+      std::fprintf(stderr, "%s: monitor %s\n", a.tag(), m.c_str());
     std::fprintf(stderr, "%s: window %dx%d on monitor %d: %s %dx%d, %s\n", a.tag(),
                  int(live->window().drawable_size().width), int(live->window().drawable_size().height),
-                 a.live.monitor, calibration ? "lenticular panel image" : "atlas", live->output_width(),
+                 live->window().monitor(), calibration ? "lenticular panel image" : "atlas", live->output_width(),
                  live->output_height(), a.live.mailbox ? "mailbox where offered" : "FIFO");
     const auto& panel = choice.profile ? choice.profile->panel : std::nullopt;
     if (panel && !calibration)
@@ -315,43 +321,19 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
 
   // The views are rebuilt from the posed scene every frame: an animated camera node moves the
   // whole rig.
-  std::atomic<bool> live_stop{false};
-  bool overlay = false;
-  bool indirect = !a.no_indirect;
-  const probes::ProbeVolume dark(placement.grid, a.probe.sh_order);  // what "indirect off" shows
+  std::unique_ptr<LiveControls> controls;
+  if (live)
+    controls = std::make_unique<LiveControls>(*live, renderer, volume,
+                                              local ? &local->scheduler : nullptr, a.no_indirect, a.tag());
   const ViewSource views = [&](const scene::Scene& posed) {
-    if (!live) return make_frame_views(posed, choice, a.display, a.view).views;
-    live->pump();
-    if (live->quit() || stop_flag().load()) live_stop = true;
-    const LiveSwitches sw = live->take_switches();
-    if (sw.indirect && a.no_indirect) {
-      std::fprintf(stderr, "%s: I: the run has --no-indirect, its shaders draw no probes\n", a.tag());
-    } else if (sw.indirect) {
-      indirect = !indirect;  // the renderer is idle between frames: swap what it draws with
-      renderer.upload_probes(indirect ? volume : dark);
-      std::fprintf(stderr, "%s: I: indirect light %s\n", a.tag(), indirect ? "on" : "off");
-    }
-    if (sw.schedule && local) {
-      const auto next = local->scheduler.options().mode == probes::ScheduleMode::uniform
-                            ? probes::ScheduleMode::visibility
-                            : probes::ScheduleMode::uniform;
-      local->scheduler.set_mode(next);
-      std::fprintf(stderr, "%s: U: schedule %s\n", a.tag(), probes::schedule_mode_name(next));
-    }
-    if (sw.overlay) {
-      overlay = !overlay;
-      std::fprintf(stderr, "%s: G: probe-grid overlay %s\n", a.tag(), overlay ? "on" : "off");
-    }
-    DisplayArgs d = a.display;
-    d.focal_distance = live->focal_distance();
-    std::vector<scene::View> frame_views = make_frame_views(posed, choice, d, a.view, live->camera()).views;
-    set_probe_overlay(*live, overlay ? &volume : nullptr, frame_views);
-    return frame_views;
+    if (controls) return controls->frame_views(posed, choice, a.display, a.view);
+    return make_frame_views(posed, choice, a.display, a.view).views;
   };
   const std::unique_ptr<ProbeSource> probes =
       make_probe_source(local.get(), a.probe, a.schedule, stream_args(a), volume, identity, a.tag());
   // Indirect light switched off in the window: no probe updates either (as --no-indirect).
-  SwitchableProbes switchable(*probes, indirect);
+  const bool always = true;
+  SwitchableProbes switchable(*probes, controls ? controls->indirect() : always);
   FrameLoop loop(s, switchable, renderer, views);
   FrameLoopOptions options;
   options.frames = live && !a.frames_given ? std::numeric_limits<int>::max() : a.frames;
@@ -360,7 +342,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   options.fps = a.fps;
   options.every = a.every || live;  // the window is shown every frame; files as asked
   // Ctrl-C: this frame is the last one, written whole; the window's close does the same.
-  options.stop = live ? &live_stop : &stop_flag();
+  options.stop = controls ? &controls->stop() : &stop_flag();
   if (live) options.render_request = live->request(files);
   double present_ms = 0.0;
   options.loop_period = a.loop ? s.animation_duration() : 0.0;
@@ -376,7 +358,8 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   const FrameSink sink = [&](int k, raster::FrameOutput& frame) {
     if (live) {
       present_ms = live->present();
-      if (!files || !(a.every || k + 1 == options.frames || live_stop.load())) return std::vector<fs::path>{};
+      if (!files || !(a.every || k + 1 == options.frames || controls->stop().load()))
+        return std::vector<fs::path>{};
     }
     const std::string tag = a.every ? fmt::format("{:04d}", k) : "";
     queue.push(std::move(frame.views), fmt::format("frame_{:04d}", k), tag);
@@ -390,16 +373,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                    a.connect.c_str(), a.wait_ms,
                    a.baked.empty() ? "direct light only" : ("the baked probes of " + a.baked).c_str());
     print_progress(r, options.frames);
-    if (live) {
-      const metrics::FrameTimings& t = *r.timings;
-      live->set_status(fmt::format(
-          "ddish {} · {} views · probes {:.1f} ms · raster {:.1f} ms · present {:.1f} ms · "
-          "oldest probe {} frames · indirect {} · {}",
-          first.name, r.counts.views,
-          t.stage_ms("tracer_update") + t.stage_ms("probe_update") + t.stage_ms("upload"),
-          raster_ms(t), present_ms, r.counts.oldest_probe_age, indirect ? "on" : "off",
-          local ? probes::schedule_mode_name(local->scheduler.options().mode) : "remote probes"));
-    }
+    if (live) live->set_status(controls->status(first.name, r, present_ms));
   });
   const auto drain_start = std::chrono::steady_clock::now();
   run.result.written = queue.finish();
@@ -456,6 +430,10 @@ int run_render(const RenderArgs& a) {
   const std::size_t done = run.result.counts.size();
   if (run.window_closed && stop_signal() == 0)
     std::fprintf(stderr, "%s: window closed after frame %zu\n", a.tag(), done);
+  else if (run.result.stopped && a.live.window && !a.frames_given)
+    std::fprintf(stderr, "%s: stopped by %s after frame %zu (t=%.3f s); the window writes no files%s\n",
+                 a.tag(), stop_signal() == SIGTERM ? "SIGTERM" : "SIGINT", done,
+                 a.time + double(done - 1) / a.fps, a.timings.empty() ? "" : ", --timings has the frames done");
   else if (run.result.stopped)
     std::fprintf(stderr, "%s: stopped by %s after frame %zu of %d (t=%.3f s): its images are "
                  "written, %s\n",
@@ -501,8 +479,10 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
                 "pair, the quilt, or with --calibration the lenticular panel image built on the "
                 "GPU; mouse: left drag orbit, right/middle drag pan, wheel dolly; keys: WASD QE "
                 "fly, I indirect light, U schedule, G probe-grid overlay, Esc quit");
-  cmd->add_option("--monitor", a.live.monitor, "with --window: the monitor (SDL display index)")
-      ->capture_default_str();
+  cmd->add_option("--monitor", a.live.monitor,
+                  "with --window: the monitor (SDL display index, listed in the run log); default: "
+                  "the monitor of the profile's panel resolution (a Looking Glass), else 0")
+      ->each([&a](const std::string&) { a.monitor_given = true; });
   cmd->add_flag("--fullscreen", a.live.fullscreen,
                 "with --window: borderless fullscreen at the monitor's own resolution (the panel's "
                 "native resolution on a Looking Glass)");

@@ -23,12 +23,15 @@ std::vector<float> decoded_srgb8() {
 }  // namespace
 
 LiveWindow::LiveWindow(const LiveArgs& args, const std::string& title, int frame_width,
-                       int frame_height, const scene::Camera& start, float focal)
+                       int frame_height, int panel_width, int panel_height,
+                       const scene::Camera& start, float focal)
     : args_(args),
       window_(window::WindowOptions{.title = title,
                                     .width = frame_width,
                                     .height = frame_height,
                                     .monitor = args.monitor,
+                                    .panel_width = panel_width,
+                                    .panel_height = panel_height,
                                     .fullscreen = args.fullscreen}),
       camera_(start.eye, start.eye + glm::normalize(start.forward) * focal, start.up, start.yfov),
       start_(start),

@@ -37,7 +37,7 @@ namespace ddish::app {
 
 struct LiveArgs {
   bool window = false;      // --window
-  int monitor = 0;          // --monitor N
+  int monitor = -1;         // --monitor N; -1: the monitor of the profile's panel size, else 0
   bool fullscreen = false;  // --fullscreen
   bool mailbox = false;     // --mailbox: MAILBOX where offered, else FIFO
   bool hold = false;        // --hold: after the last frame keep showing it until closed
@@ -55,8 +55,9 @@ class LiveWindow {
   // `start` is the scene camera the run starts from and `focal` its focal distance: the orbit
   // target is that far ahead, so the first frame equals the headless run's. Throws
   // window::WindowError (no display server, bad monitor).
+  // `panel`: the display profile's panel resolution (0 × 0 without one), to find its monitor.
   LiveWindow(const LiveArgs& args, const std::string& title, int frame_width, int frame_height,
-             const scene::Camera& start, float focal);
+             int panel_width, int panel_height, const scene::Camera& start, float focal);
   ~LiveWindow();
 
   std::vector<std::string> instance_extensions() const { return window_.instance_extensions(); }

@@ -19,17 +19,28 @@ Window::Window(const WindowOptions& o) {
   if (!display_server_named())
     throw WindowError("--window needs a display server, and neither DISPLAY nor WAYLAND_DISPLAY "
                       "is set; without --window ddish renders to files");
+  // SIGINT and SIGTERM stay ddish's (app/interrupt.h: the frame in progress ends the run).
+  SDL_SetHint(SDL_HINT_NO_SIGNAL_HANDLERS, "1");
   if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
     throw WindowError(std::string("--window needs a display server, and SDL found none (") +
                       SDL_GetError() + "); without --window ddish renders to files");
   try {
     const int monitors = SDL_GetNumVideoDisplays();
-    if (o.monitor < 0 || o.monitor >= monitors)
-      throw WindowError("--monitor " + std::to_string(o.monitor) + ": the display server has " +
+    monitor_ = o.monitor < 0 ? 0 : o.monitor;
+    if (o.monitor < 0)
+      for (int m = 0; m < monitors; ++m) {
+        SDL_Rect b{};
+        if (SDL_GetDisplayBounds(m, &b) == 0 && b.w == o.panel_width && b.h == o.panel_height) {
+          monitor_ = m;
+          break;
+        }
+      }
+    if (monitor_ >= monitors)
+      throw WindowError("--monitor " + std::to_string(monitor_) + ": the display server has " +
                         std::to_string(monitors) + " monitor" + (monitors == 1 ? "" : "s") +
                         " (0.." + std::to_string(monitors - 1) + ")");
     SDL_Rect usable{};
-    if (SDL_GetDisplayUsableBounds(o.monitor, &usable) != 0) SDL_GetDisplayBounds(o.monitor, &usable);
+    if (SDL_GetDisplayUsableBounds(monitor_, &usable) != 0) SDL_GetDisplayBounds(monitor_, &usable);
     int w = o.width, h = o.height;
     if (!o.fullscreen && usable.w > 0 && usable.h > 0 && (w > usable.w || h > usable.h)) {
       const double s = std::min(double(usable.w) / w, double(usable.h) / h);
@@ -38,8 +49,8 @@ Window::Window(const WindowOptions& o) {
     }
     Uint32 flags = SDL_WINDOW_VULKAN | SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI;
     if (o.fullscreen) flags |= SDL_WINDOW_FULLSCREEN_DESKTOP;
-    window_ = SDL_CreateWindow(o.title.c_str(), int(SDL_WINDOWPOS_CENTERED_DISPLAY(o.monitor)),
-                               int(SDL_WINDOWPOS_CENTERED_DISPLAY(o.monitor)), w, h, flags);
+    window_ = SDL_CreateWindow(o.title.c_str(), int(SDL_WINDOWPOS_CENTERED_DISPLAY(monitor_)),
+                               int(SDL_WINDOWPOS_CENTERED_DISPLAY(monitor_)), w, h, flags);
     if (!window_)
       throw WindowError(std::string("cannot open a Vulkan window: ") + SDL_GetError());
   } catch (...) {
@@ -83,6 +94,18 @@ VkExtent2D Window::drawable_size() const {
 }
 
 int Window::monitor_count() const { return SDL_GetNumVideoDisplays(); }
+
+std::vector<std::string> Window::monitors() {
+  std::vector<std::string> lines;
+  for (int m = 0; m < SDL_GetNumVideoDisplays(); ++m) {
+    SDL_Rect b{};
+    SDL_GetDisplayBounds(m, &b);
+    const char* name = SDL_GetDisplayName(m);
+    lines.push_back(std::to_string(m) + " " + (name ? name : "?") + " " + std::to_string(b.w) + "x" +
+                    std::to_string(b.h) + " at " + std::to_string(b.x) + "," + std::to_string(b.y));
+  }
+  return lines;
+}
 
 void Window::set_title(const std::string& title) { SDL_SetWindowTitle(window_, title.c_str()); }
 

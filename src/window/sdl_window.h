@@ -24,7 +24,11 @@ struct WindowOptions {
   std::string title = "ddish";
   int width = 512;   // the frame's size: the window opens this big where the monitor has room
   int height = 512;
-  int monitor = 0;   // SDL display index (--monitor N)
+  // SDL display index (--monitor N); -1: the monitor whose resolution is `panel_width` ×
+  // `panel_height` (a Looking Glass panel), else monitor 0.
+  int monitor = 0;
+  int panel_width = 0;
+  int panel_height = 0;
   bool fullscreen = false;  // borderless at the monitor's native mode ("fullscreen desktop")
 };
 
@@ -52,12 +56,16 @@ class Window {
 
   VkExtent2D drawable_size() const;
   int monitor_count() const;
+  // The monitor the window opened on, and every monitor as "N NAME WxH at X,Y" (the run log).
+  int monitor() const { return monitor_; }
+  static std::vector<std::string> monitors();
   void set_title(const std::string& title);
   SDL_Window* handle() const { return window_; }
   std::uint32_t id() const { return SDL_GetWindowID(window_); }
 
  private:
   SDL_Window* window_ = nullptr;
+  int monitor_ = 0;
   VkInstance instance_ = VK_NULL_HANDLE;
   VkSurfaceKHR surface_ = VK_NULL_HANDLE;
 };

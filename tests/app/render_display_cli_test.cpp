@@ -143,3 +143,22 @@ TEST_F(RenderDisplayCli, BadDisplayOptionsAreOneLineExitTwo) {
 }
 
 }  // namespace
+
+namespace {
+
+using namespace display_cli;
+
+class DisplayListCli : public Cli {};
+
+TEST_F(DisplayListCli, ListsEveryProfileWithItsPanelAndNeedsNoScene) {
+  Result r = run("render --display list");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* line : {"looking-glass-portrait        48 views  quilt 8x6 of 3360x3360, tiles 420x560, panel 1536x2048",
+                           "looking-glass-go              66 views  quilt 11x6 of 4092x4092, tiles 372x682, panel 1440x2560",
+                           "looking-glass-65              72 views  quilt 8x9 of 8192x8190, tiles 1024x910, panel 7680x4320",
+                           "stereo-hmd                     2 views  quilt 2x1 of 2880x1600, tiles 1440x1600\n"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 11) << r.out;  // the 11 in displays/
+}
+
+}  // namespace

@@ -1,52 +1,50 @@
-// A private X server for one test: Xvfb on a free display number with a screen of the size the
-// test asks for (24-bit), started in the constructor and stopped (SIGTERM, then waited for) in the
-// destructor. Start-up is bounded: the server's socket must appear within 10 s.
+// A private X server for one test: Xvfb with a screen of the size the test asks for (24-bit) on
+// a display number it picks itself (-displayfd: no race between tests started together),
+// started in the constructor and stopped (SIGTERM, then waited for) in the destructor. Start-up
+// is bounded: the server must report its display within 10 s.
 #pragma once
 
+#include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <filesystem>
 #include <string>
-#include <thread>
 
 namespace window_test {
 
 class Xvfb {
  public:
   Xvfb(int width, int height) {
-    for (int n = 90 + int(::getpid() % 50); n < 200 && pid_ <= 0; ++n) {
-      if (std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n)) ||
-          std::filesystem::exists("/tmp/.X" + std::to_string(n) + "-lock"))
-        continue;
-      // Appended piece by piece: GCC 12 at -O3 warns (-Wrestrict, a false positive) on
-      // "literal" + std::string.
-      std::string display = ":";
-      display += std::to_string(n);
-      std::string screen = std::to_string(width);
-      screen += 'x';
-      screen += std::to_string(height);
-      screen += "x24";
-      pid_ = ::fork();
-      if (pid_ == 0) {
-        ::execlp("Xvfb", "Xvfb", display.c_str(), "-screen", "0", screen.c_str(), "-nolisten",
-                 "tcp", "-noreset", static_cast<char*>(nullptr));
-        ::_exit(127);
-      }
-      const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-      while (std::chrono::steady_clock::now() < until) {
-        if (std::filesystem::exists("/tmp/.X11-unix/X" + std::to_string(n))) {
-          display_ = display;
-          return;
-        }
-        int status = 0;
-        if (::waitpid(pid_, &status, WNOHANG) == pid_) break;  // it died (display taken?)
-        std::this_thread::sleep_for(std::chrono::milliseconds(50));
-      }
-      stop();
+    int fds[2];
+    if (::pipe(fds) != 0) return;
+    std::string screen = std::to_string(width);
+    screen += 'x';
+    screen += std::to_string(height);
+    screen += "x24";
+    const std::string fd = std::to_string(fds[1]);
+    pid_ = ::fork();
+    if (pid_ == 0) {
+      ::close(fds[0]);
+      ::execlp("Xvfb", "Xvfb", "-displayfd", fd.c_str(), "-screen", "0", screen.c_str(),
+               "-nolisten", "tcp", "-noreset", static_cast<char*>(nullptr));
+      ::_exit(127);
     }
+    ::close(fds[1]);
+    // Xvfb writes the display number and a newline once it accepts connections.
+    std::string number;
+    pollfd p{fds[0], POLLIN, 0};
+    while (pid_ > 0 && ::poll(&p, 1, 10000) == 1) {
+      char c = 0;
+      if (::read(fds[0], &c, 1) != 1) break;
+      if (c == '\n') {
+        display_ = ":" + number;
+        break;
+      }
+      number += c;
+    }
+    ::close(fds[0]);
+    if (display_.empty()) stop();
   }
   ~Xvfb() { stop(); }
   Xvfb(const Xvfb&) = delete;
