@@ -147,8 +147,11 @@ TEST_F(GltfFeaturesCli, LitBlendedPanelsAgreeWithTheReference) {
   for (int x : {16, 48, 80}) {
     const glm::vec3 ref = block_mean(images[0], x, 16, 4);
     const glm::vec3 r = block_mean(images[1], x, 16, 4);
-    for (int k = 0; k < 3; ++k)
-      if (ref[k] > 0.05f) EXPECT_NEAR(r[k] / ref[k], 1.0f, 0.06f) << "column " << x << " channel " << k;
+    for (int k = 0; k < 3; ++k) {
+      if (ref[k] > 0.05f) {
+        EXPECT_NEAR(r[k] / ref[k], 1.0f, 0.06f) << "column " << x << " channel " << k;
+      }
+    }
   }
 }
 
