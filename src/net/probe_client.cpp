@@ -212,9 +212,19 @@ ProbeClient::ProbeClient(const ClientOptions& options, probes::ProbeVolume& volu
 ProbeClient::~ProbeClient() = default;
 
 ClientPoll ProbeClient::poll(int wait_ms) {
-  Impl& s = *impl_;
   ClientPoll out;
-  const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms);
+  try {
+    poll_until(std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms), out);
+  } catch (const zmq::error_t& e) {
+    // A signal (Ctrl-C, SIGTERM) can interrupt any ZeroMQ call, even a non-blocking one: the
+    // frame goes on with what was received so far, and the caller looks at its stop flag.
+    if (e.num() != EINTR) throw;
+  }
+  return out;
+}
+
+void ProbeClient::poll_until(std::chrono::steady_clock::time_point end, ClientPoll& out) {
+  Impl& s = *impl_;
   while (true) {
     // What is queued first: a frame that took longer than stale_ms to render must not make a
     // live server look lost (the messages it sent meanwhile are waiting).
@@ -251,14 +261,17 @@ ClientPoll ProbeClient::poll(int wait_ms) {
       break;  // a signal: the frame goes on with what it has
     }
   }
-  return out;
 }
 
 void ProbeClient::send_views(const std::vector<scene::View>& views) {
   if (views.empty()) return;
   const std::vector<std::uint8_t> message = encode_views(views);
   std::array<zmq::const_buffer, 2> parts = {zmq::str_buffer("VIEW"), zmq::buffer(message)};
-  zmq::send_multipart(impl_->requests, parts, zmq::send_flags::dontwait);
+  try {
+    zmq::send_multipart(impl_->requests, parts, zmq::send_flags::dontwait);
+  } catch (const zmq::error_t& e) {
+    if (e.num() != EINTR) throw;  // a signal: the views go with the next frame
+  }
 }
 
 bool ProbeClient::synced() const { return impl_->mirror.synced(); }

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -62,7 +63,7 @@ class ProbeClient {
   ProbeClient& operator=(const ProbeClient&) = delete;
 
   // Takes every waiting message; waits up to wait_ms for the first one that brings probes
-  // (0: does not wait). Asks for snapshots as needed.
+  // (0: does not wait). Asks for snapshots as needed. A signal ends the wait early.
   ClientPoll poll(int wait_ms);
   void send_views(const std::vector<scene::View>& views);
 
@@ -80,6 +81,7 @@ class ProbeClient {
 
  private:
   struct Impl;
+  void poll_until(std::chrono::steady_clock::time_point end, ClientPoll& out);
   std::unique_ptr<Impl> impl_;
 };
 

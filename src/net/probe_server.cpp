@@ -122,8 +122,12 @@ ProbeServer::ProbeServer(const ServerOptions& options) : impl_(std::make_unique<
 ProbeServer::~ProbeServer() = default;
 
 void ProbeServer::publish(std::span<const std::uint8_t> frame) {
-  if (impl_->publisher.send(zmq::buffer(frame.data(), frame.size()), zmq::send_flags::dontwait))
-    impl_->bytes += frame.size();
+  try {
+    if (impl_->publisher.send(zmq::buffer(frame.data(), frame.size()), zmq::send_flags::dontwait))
+      impl_->bytes += frame.size();
+  } catch (const zmq::error_t& e) {
+    if (e.num() != EINTR) throw;  // a signal (SIGINT, SIGTERM): the caller is about to stop
+  }
 }
 
 double ProbeServer::serve_requests(int timeout_ms,
