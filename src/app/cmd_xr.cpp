@@ -251,7 +251,7 @@ Action make_xr(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--frame-wait-ms", a->stream.frame_wait_ms, "with --connect: each later frame's wait for the server")
       ->capture_default_str();
-  cmd->add_option("--stale-ms", a->stream.stale_ms, "with --connect: no message for this long: the server is lost")
+  cmd->add_option("--stale-ms", a->stream.stale_ms, "with --connect: no message for this long while connected: say the server is slow (a dropped connection is a lost server)")
       ->capture_default_str();
   cmd->add_option("--curve-server-key", a->stream.curve_server_key, "with --connect: the server's public key (.pub)")
       ->check(CLI::ExistingFile);
