@@ -38,8 +38,10 @@ done
 # The code keeps working on Mesa 22; this only picks the faster driver.
 MESA_MIN_MAJOR=25
 BACKPORTS_LIST=/etc/apt/sources.list.d/bookworm-backports.sources
+# Empty when the driver is not installed (a clean machine): dpkg-query's failure must not end
+# the script under set -e / pipefail.
 mesa_major() {
-  dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null | cut -d. -f1
+  { dpkg-query -W -f='${Version}' mesa-vulkan-drivers 2>/dev/null || true; } | cut -d. -f1
 }
 need_mesa=0
 if [ "${DDISH_STOCK_MESA:-0}" != 1 ] && grep -q 'VERSION_CODENAME=bookworm' /etc/os-release 2>/dev/null; then
