@@ -84,7 +84,7 @@ QUICK = {
         "events": DYNAMIC_EVENTS, "still_frames": 30, "still_hysteresis": 0.999,
     },
     "schedule": None,
-    "soak": {"frames": 200, "size": (32, 32), "budget_ms": 30.0, "every": 50},
+    "soak": {"frames": 100, "size": (32, 32), "budget_ms": 30.0, "every": 50},
 }
 
 # The paper's settings (DDISH-GI): L2 probes, 256 paths per probe per update, the grid of the

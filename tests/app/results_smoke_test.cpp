@@ -125,7 +125,7 @@ TEST(ResultsSmoke, QuickReportHasEverySectionAndFiniteFigures) {
   const std::string md = slurp(report);
   for (const char* heading : {"## Machine", "## Headline figures", "## 1. Viewport scaling",
                               "## 2. Error against run time", "## 3. Dynamic light",
-                              "## 4. Probe scheduling"})
+                              "## 4. Probe scheduling", "## 6. Soak"})
     EXPECT_NE(md.find(heading), std::string::npos) << "RESULTS.md lacks " << heading;
   EXPECT_EQ(md.find("failed"), std::string::npos) << "a step failed:\n" << md;
 
@@ -139,6 +139,8 @@ TEST(ResultsSmoke, QuickReportHasEverySectionAndFiniteFigures) {
   expect_finite(read_csv(results / "dynamic.csv"), {"frame", "rmse", "psnr", "ssim"}, "dynamic.csv");
   expect_finite(read_csv(results / "dynamic_summary.csv"), {"steady_rmse", "frame_ms"},
                 "dynamic_summary.csv");
+  expect_finite(read_csv(results / "soak.csv"), {"frame_ms", "rss_kb", "open_fds", "gpu_allocations"},
+                "soak.csv");
   if (fs::is_regular_file(results / "trace_floor.csv"))
     expect_finite(read_csv(results / "trace_floor.csv"),
                   {"floor_rays", "floor_ms", "floor_mrays_s", "update_ms", "update_mrays_s"},
