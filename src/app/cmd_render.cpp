@@ -116,6 +116,7 @@ struct RenderArgs {
   bool sample_shading = false;
   int anisotropy = raster::kAutomaticAnisotropy;
   std::uint32_t view_batch = 0;  // raster::RendererOptions::batch_views
+  std::uint32_t max_gpu_memory_mb = 0;  // raster::RendererOptions::memory_limit_bytes, in MiB
   std::string tonemap = "filmic";
   bool no_indirect = false;
   std::optional<std::uint32_t> device;
@@ -273,6 +274,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   ro.sample_shading = a.sample_shading;
   ro.anisotropy = a.anisotropy;
   ro.batch_views = a.view_batch;
+  ro.memory_limit_bytes = std::uint64_t{a.max_gpu_memory_mb} << 20;
   ro.tone_curve = raster::parse_tone_curve(a.tonemap);
   ro.exposure = exposure_scale(a.lighting);
   ro.probes = !a.no_indirect;
@@ -507,6 +509,10 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
   cmd->add_option("--timings", a.timings, "write per-frame stage milliseconds as JSON here");
   cmd->add_option("--msaa", a.msaa, "samples per pixel (default: 4 where supported, else 1)");
   cmd->add_flag("--sample-shading", a.sample_shading, "shade every MSAA sample");
+  cmd->add_option("--max-gpu-memory", a.max_gpu_memory_mb,
+                  "MiB the frame's render target and readback may take (batches shrink to fit; a view "
+                  "that cannot fit is an error before the run); 0: what the device has free")
+      ->capture_default_str();
   cmd->add_option("--view-batch", a.view_batch,
                   "views drawn per submission into one reused target; 0: the most whose target "
                   "fits 256 MiB (fewer means less memory, more submissions)")

@@ -39,7 +39,20 @@ std::string result_name(VkResult result) {
 }
 
 void check(VkResult result, std::string_view what) {
-  if (result != VK_SUCCESS) throw GpuError(std::string(what) + " failed: " + result_name(result));
+  if (result == VK_SUCCESS) return;
+  std::string message = std::string(what) + " failed: " + result_name(result);
+  // The results a user can act on get what to do: the call alone does not say it.
+  switch (result) {
+    case VK_ERROR_OUT_OF_DEVICE_MEMORY:
+    case VK_ERROR_OUT_OF_HOST_MEMORY:
+      message += " (out of memory: fewer or smaller views, a lower --msaa or --view-batch)";
+      break;
+    case VK_ERROR_DEVICE_LOST:
+      message += " (the GPU was reset or its driver failed; nothing more can run on this device)";
+      break;
+    default: break;
+  }
+  throw GpuError(message);
 }
 
 }  // namespace ddish::gpu

@@ -39,6 +39,14 @@ struct MemoryTally {
 };
 MemoryTally live_device_memory();
 
+// What a new allocation may still take, in bytes: the largest device-local heap less what this
+// process holds there; on a CPU device (lavapipe, whose heap is the whole of system memory) also
+// at most the system's available memory. Callers check a large target against it first, so that
+// an impossible size is one clear error, not the kernel's out-of-memory killer.
+std::uint64_t device_memory_available(const Device& device);
+// The system's available memory (MemAvailable), or UINT64_MAX where it cannot be read.
+std::uint64_t host_memory_available();
+
 class DeviceMemory {
  public:
   DeviceMemory() = default;

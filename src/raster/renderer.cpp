@@ -8,6 +8,7 @@
 #include "gpu/device.h"
 #include "gpu/error.h"
 #include "gpu/image.h"
+#include "gpu/memory.h"
 #include "probes/probe_volume.h"
 #include "scene/scene.h"
 #include "scene/view.h"
@@ -176,14 +177,46 @@ bool Renderer::shadows_current(const scene::Scene& scene,
   return true;
 }
 
+std::uint64_t Renderer::view_bytes(std::uint32_t width, std::uint32_t height) const {
+  // MSAA colour (RGBA16F) and depth (D32) samples, the resolve image, the HDR and display readbacks.
+  return std::uint64_t{width} * height * (std::uint64_t{samples_} * (8 + 4) + 8 + 8 + 4) + pass_bytes_;
+}
+
+std::uint32_t Renderer::fit_memory(std::uint32_t width, std::uint32_t height, std::uint32_t views,
+                                   std::uint32_t batch, bool read_back) const {
+  const std::uint64_t per_view = view_bytes(width, height);
+  // The target being replaced is freed first, so its bytes count as room.
+  const std::uint64_t held = target_ ? view_bytes(target_->desc().width, target_->desc().height) *
+                                           target_->desc().layers
+                                     : 0;
+  const bool limited = options_.memory_limit_bytes > 0;
+  const std::uint64_t room = limited ? options_.memory_limit_bytes : gpu::device_memory_available(device_) + held;
+  const auto mib = [](std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; };
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (per_view > room)
+    throw gpu::GpuError("one " + size + " view at " + std::to_string(samples_) + " sample" +
+                        (samples_ == 1 ? "" : "s") + " per pixel needs " + mib(per_view) +
+                        " of device memory (render target, resolve and readback), more than the " +
+                        mib(room) + (limited ? " that --max-gpu-memory allows" : " the device has free") +
+                        ": lower the view size or --msaa");
+  batch = static_cast<std::uint32_t>(std::min<std::uint64_t>(batch, room / per_view));
+  if (read_back) {
+    // The frame's images on the host: linear RGB floats and packed display pixels.
+    const std::uint64_t host = std::uint64_t{width} * height * views * (sizeof(glm::vec3) + 4);
+    const std::uint64_t free = gpu::host_memory_available();
+    if (host > free)
+      throw gpu::GpuError(std::to_string(views) + " views of " + size + " need " + mib(host) +
+                          " of memory for their read-back pixels, more than the " + mib(free) +
+                          " available: fewer views or a smaller view size");
+  }
+  return std::max<std::uint32_t>(batch, 1);
+}
+
 std::uint32_t Renderer::batch_size(std::uint32_t width, std::uint32_t height,
                                    std::uint32_t views) const {
   std::uint32_t g = options_.batch_views;
   if (g == 0) {
-    // Per view: MSAA colour (RGBA16F) and depth (D32) samples, the resolve image, the HDR and
-    // display readbacks.
-    const std::uint64_t per_view =
-        std::uint64_t{width} * height * (std::uint64_t{samples_} * (8 + 4) + 8 + 8 + 4) + pass_bytes_;
+    const std::uint64_t per_view = view_bytes(width, height);
     g = static_cast<std::uint32_t>(std::max<std::uint64_t>(1, RendererOptions::kBatchTargetBytes / per_view));
     const std::uint32_t block = forward_->views_per_pass();
     if (options_.view_method == ViewMethod::multiview && g > block) g -= g % block;
@@ -235,7 +268,11 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
   const auto w = static_cast<std::uint32_t>(views.front().width);
   const auto h = static_cast<std::uint32_t>(views.front().height);
   const auto n = static_cast<std::uint32_t>(views.size());
-  const std::uint32_t batch = batch_size(w, h, n);
+  std::uint32_t batch = batch_size(w, h, n);
+  // Checked only when the target changes (the first frame, a new size): before any allocation.
+  const bool same = target_ && target_->desc().width == w && target_->desc().height == h;
+  if (!same || target_->desc().layers < batch) batch = fit_memory(w, h, n, batch, request.read_back);
+  else batch = target_->desc().layers;
   ensure_target(w, h, batch);
   out.views.reserve(n);
 

@@ -81,6 +81,10 @@ struct RendererOptions {
   // ends: Sponza (262k triangles) measured 57 MB a view of a batch beyond its target (16 views:
   // 1.84 GB in one batch, 1.15 GB in batches of 4), so the automatic batch counts this too.
   static constexpr std::uint64_t kCpuPassBytesPerTriangle = 256;
+  // The most bytes a frame's render target and readback may take (--max-gpu-memory); 0: what
+  // the device has free (gpu::device_memory_available). A batch is made smaller to fit, and a
+  // single view that cannot fit is a GpuError before anything is allocated.
+  std::uint64_t memory_limit_bytes = 0;
 };
 
 struct ViewImage {
@@ -141,6 +145,13 @@ class Renderer {
 
  private:
   void ensure_target(std::uint32_t width, std::uint32_t height, std::uint32_t views);
+  // Device bytes of one view in a batch: MSAA colour and depth, resolve, readbacks, CPU passes.
+  std::uint64_t view_bytes(std::uint32_t width, std::uint32_t height) const;
+  // The batch that fits the memory (RendererOptions::memory_limit_bytes) for a new target;
+  // throws GpuError when one view does not, or when the views' read-back pixels (16 bytes a
+  // pixel, host memory) cannot fit the system's available memory.
+  std::uint32_t fit_memory(std::uint32_t width, std::uint32_t height, std::uint32_t views,
+                           std::uint32_t batch, bool read_back) const;
   void record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
                     std::span<const scene::View> views, std::uint32_t layers);
   // The batch's part of a RenderRequest: makes hdr and display readable, records after_batch.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "gpu/device_info.h"
+#include "gpu/error.h"
 #include "gpu_test.h"
 
 namespace ddish::gpu::test {
@@ -237,6 +238,31 @@ TEST(DeviceCreation, ListedExtensionsAreEnabled) {
     EXPECT_EQ(vkGetDeviceProcAddr(without.device().handle(), "vkCreateSwapchainKHR"), nullptr);
   }
   EXPECT_EQ(log->errors(), 0u) << describe_errors(*log);
+}
+
+}  // namespace
+}  // namespace ddish::gpu::test
+
+namespace ddish::gpu::test {
+namespace {
+
+// Out of memory and a lost device say what they mean to a user, in one line.
+TEST(GpuErrors, ResourceFailuresSayWhatToDo) {
+  const auto message = [](VkResult r) {
+    try {
+      check(r, "vkAllocateMemory of 64 bytes");
+    } catch (const GpuError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message(VK_SUCCESS), "");
+  const std::string oom = message(VK_ERROR_OUT_OF_DEVICE_MEMORY);
+  EXPECT_NE(oom.find("VK_ERROR_OUT_OF_DEVICE_MEMORY (out of memory:"), std::string::npos) << oom;
+  const std::string lost = message(VK_ERROR_DEVICE_LOST);
+  EXPECT_NE(lost.find("the GPU was reset"), std::string::npos) << lost;
+  for (const std::string& m : {oom, lost, message(VK_ERROR_INITIALIZATION_FAILED)})
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
 }
 
 }  // namespace
