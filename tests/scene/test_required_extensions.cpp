@@ -76,6 +76,26 @@ TEST(RequiredExtensions, OptionalDracoWithoutFallbackDataIsAnErrorToo) {
       << msg;
 }
 
+// Optional Draco whose accessors also carry the uncompressed triangle: the corrupt Draco data is
+// a warning and the plain data is used.
+TEST(RequiredExtensions, OptionalDracoFallsBackToTheUncompressedData) {
+  test::TempDir dir("draco_fallback");
+  test::GltfBuilder b = draco_triangle();
+  b.doc.erase("extensionsRequired");
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::uint16_t indices[4] = {0, 1, 2, 0};
+  b.doc["accessors"][0]["bufferView"] = b.add_view(positions, sizeof positions);
+  b.doc["accessors"][1]["bufferView"] = b.add_view(indices, sizeof indices);
+  const scene::Scene s = scene::load_scene(b.write(dir.path.string(), "f.gltf", test::BufferMode::External));
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_EQ(s.meshes[0].positions.size(), 3u);
+  EXPECT_EQ(s.meshes[0].positions[1], glm::vec3(1, 0, 0));
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("(optional) cannot be decoded, its uncompressed data is used"),
+            std::string::npos)
+      << s.warnings[0];
+}
+
 TEST(RequiredExtensions, NoneListedReadsEmpty) {
   test::TempDir dir("noreq");
   test::GltfBuilder b;
