@@ -11,6 +11,9 @@ PACKAGES=(
   # math, scenes, images, options, logging, compression
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libopenimageio-dev openimageio-tools
   libcli11-dev libspdlog-dev libfmt-dev libzstd-dev libmeshoptimizer-dev
+  # KHR_draco_mesh_compression (src/scene/gltf_draco.cpp); draco_transcoder writes the
+  # Draco twin of scenes/draco_box.gltf (scripts/make_draco_box.sh)
+  libdraco-dev draco
   # ray tracing and threads
   libembree-dev libtbb-dev
   # probe stream (src/net): ZeroMQ with CURVE, its C++ binding

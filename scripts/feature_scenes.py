@@ -270,5 +270,41 @@ def dielectric_panels(out_dir):
     g.write(out_dir, None)
 
 
+# environment_plane: a Lambertian floor for image-based lighting (--environment).
+ENVIRONMENT_PLANE_ALBEDO = 0.5
+
+
+def environment_plane(out_dir):
+    """A 4 x 4 m floor at y = 0 facing +Y, base colour ENVIRONMENT_PLANE_ALBEDO, rough, with
+    KHR_materials_specular's specularFactor 0: no dielectric layer, so it is exactly Lambertian
+    in both renderers and its radiance is albedo x irradiance / pi. No light: the tests light it
+    with --environment maps they write (tests/app/environment_cli_test.cpp). The camera 0.5 m
+    above the floor looks horizontally along -Z with a 60 degree field: the image's upper half is
+    sky, its lower quarter floor."""
+    g = Gltf("environment_plane")
+    a = ENVIRONMENT_PLANE_ALBEDO
+    m = g.material("Lambert", [a, a, a, 1.0], roughness=1.0)
+    g.doc["materials"][m]["extensions"] = {"KHR_materials_specular": {"specularFactor": 0.0}}
+    g.extensions.add("KHR_materials_specular")
+    p = Part(m)
+    p.rect(1, 0.0, 1, (-2.0, -2.0), (2.0, 2.0))
+    g.node({"name": "Floor", "mesh": g.mesh("Floor", [p])})
+    g.camera("Camera", [0.0, 0.5, 1.5], [0.0, 0.5, 0.0], math.radians(60.0))
+    g.write(out_dir, None)
+
+
+def draco_box(out_dir):
+    """A 1 m cube of base colour (0.8, 0.5, 0.3) with normals and UVs, no camera (the framing
+    camera sees it) and no light (the default sky lights it): the plain twin of
+    draco_box_draco.gltf, which scripts/make_draco_box.sh writes from it with Draco's encoder
+    (whose glTF writer drops cameras: with none, both twins are framed alike)."""
+    g = Gltf("draco_box")
+    m = g.material("Clay", [0.8, 0.5, 0.3, 1.0], roughness=0.6)
+    p = Part(m)
+    p.box((-0.5, -0.5, -0.5), (0.5, 0.5, 0.5))
+    g.node({"name": "Box", "mesh": g.mesh("Box", [p])})
+    g.write(out_dir, None)
+
+
 SCENES = (vertex_colors, texture_transform, texture_filters, normal_map_plane, blend_panels, blend_panels_lit,
-          dielectric_panels)
+          dielectric_panels, environment_plane, draco_box)

@@ -132,14 +132,14 @@ VkPipeline ForwardPass::pipeline_for(ViewMethod method, std::uint32_t view_count
 
 void ForwardPass::begin_pass(VkCommandBuffer cmd, const RenderTarget& target, VkImageView color_view,
                              VkImageView depth_view, std::uint32_t layers, std::uint32_t view_mask,
-                             const glm::vec3& environment, VkPipeline pipeline,
+                             const glm::vec4& clear, VkPipeline pipeline,
                              std::span<const VkDescriptorSet> sets) const {
   VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   color.imageView = color_view;
   color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   // The clear colour is the environment: no full-screen draw (see the header).
   color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.clearValue.color = {{environment.r, environment.g, environment.b, 1.0f}};
+  color.clearValue.color = {{clear.r, clear.g, clear.b, clear.a}};
   // Multisampled targets are resolved after all views by RenderTarget::end_frame.
   color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -213,7 +213,7 @@ void ForwardPass::draw_items(VkCommandBuffer cmd, const scene::Scene& scene,
 void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const GpuMeshes& meshes,
                          const MaterialTextures& materials, std::array<VkDescriptorSet, 3> sets,
                          const RenderTarget& target, const ForwardViews& views,
-                         const glm::vec3& environment) {
+                         const glm::vec4& clear) {
   passes_ = 0;
   stats_ = {};
   const auto n = static_cast<std::uint32_t>(views.view_proj.size());
@@ -242,7 +242,7 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
       for (std::uint32_t v = 0; v < n; ++v) {
         items_.clear();
         build_draws(scene, meshes, order, pass_views(v, 1), views.cull, items_, stats_);
-        begin_pass(cmd, target, target.color_view(v), target.depth_view(v), 1, 0, environment,
+        begin_pass(cmd, target, target.color_view(v), target.depth_view(v), 1, 0, clear,
                    pipeline_for(ViewMethod::per_view, 1), sets);
         meshes.bind(cmd);
         draw_items(cmd, scene, materials, items_, v, 0);
@@ -262,7 +262,7 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
         build_draws(scene, meshes, order, pass_views(first, count), views.cull, items_, stats_);
         begin_pass(cmd, target, blocks ? target.color_block_view(b) : target.color_view(first),
                    blocks ? target.depth_block_view(b) : target.depth_view(first), 1, (1u << count) - 1u,
-                   environment, pipeline_for(ViewMethod::multiview, count), sets);
+                   clear, pipeline_for(ViewMethod::multiview, count), sets);
         meshes.bind(cmd);
         draw_items(cmd, scene, materials, items_, first, 0);
         record_blended(first, count,
@@ -276,7 +276,7 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
       break;
     case ViewMethod::layered: {
       const VkPipeline pipeline = pipeline_for(ViewMethod::layered, n);
-      begin_pass(cmd, target, target.color_all_view(), target.depth_all_view(), n, 0, environment,
+      begin_pass(cmd, target, target.color_all_view(), target.depth_all_view(), n, 0, clear,
                  pipeline, sets);
       meshes.bind(cmd);
       // Each view's own draws, its index as the instance (the shader's layer and view).

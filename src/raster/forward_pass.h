@@ -4,6 +4,8 @@
 // behind, depth tested but not written, lit by the probes like the rest), into an HDR target
 // cleared to the environment's radiance (the uniform sky is what a pixel that hits nothing sees; a clear, not a full-screen
 // draw, so lavapipe 22's multiview bug with primitives outside the clip volume cannot touch it).
+// With an environment map the clear is transparent black instead, alpha being the coverage of
+// what was drawn, and raster/environment_background.h composites the map behind it.
 // The views go into a layered target, one layer per view, recorded as ViewMethod says, each
 // pass drawing only the clusters its views can see when culling is on (raster/draw_list.h).
 #pragma once
@@ -73,7 +75,7 @@ class ForwardPass {
   // shaderOutputLayer (GpuError otherwise).
   void record(VkCommandBuffer cmd, const scene::Scene& scene, const GpuMeshes& meshes,
               const MaterialTextures& materials, std::array<VkDescriptorSet, 3> sets,
-              const RenderTarget& target, const ForwardViews& views, const glm::vec3& environment);
+              const RenderTarget& target, const ForwardViews& views, const glm::vec4& clear);
 
   // Builds the pipeline `method` records with (for multiview, that of a full block), so that a
   // device lacking what it needs fails here, before any recording: GpuError for layered
@@ -91,7 +93,7 @@ class ForwardPass {
   VkPipeline pipeline_for(ViewMethod method, std::uint32_t view_count, bool blend = false);
   void begin_pass(VkCommandBuffer cmd, const RenderTarget& target, VkImageView color,
                   VkImageView depth, std::uint32_t layers, std::uint32_t view_mask,
-                  const glm::vec3& environment, VkPipeline pipeline,
+                  const glm::vec4& clear, VkPipeline pipeline,
                   std::span<const VkDescriptorSet> sets) const;
   void draw_items(VkCommandBuffer cmd, const scene::Scene& scene, const MaterialTextures& materials,
                   std::span<const DrawItem> items, std::uint32_t view_index,

@@ -98,6 +98,7 @@ Renderer::Renderer(gpu::Device& device, const scene::Scene& scene, const probes:
                            samples_, volume.sh_order()));
   forward_->prepare(options.view_method);
   if (device.info().timestamps_supported()) timer_.emplace(device, kRanges);
+  if (scene.environment_map) background_.emplace(device, runner_, *scene.environment_map);
   // The probe set must hold data before the first frame binds it.
   probe_textures_.upload(runner_, volume);
 }
@@ -143,9 +144,12 @@ void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
     view_proj.push_back(v.projection * v.view);
     eyes.push_back(v.eye());
   }
+  // A map is composited behind the drawn pixels after the resolve (their alpha is coverage);
+  // a uniform sky is the clear colour.
+  const glm::vec4 clear = background_ ? glm::vec4(0.0f) : glm::vec4(scene.environment(), 1.0f);
   forward_->record(cmd, scene, meshes_, materials_,
                    {frame_.set(), probe_textures_.set(), brdf_tables_.set()}, *target_,
-                   {view_proj, eyes, options_.view_method, options_.cull}, scene.environment());
+                   {view_proj, eyes, options_.view_method, options_.cull}, clear);
   if (timer_) timer_->end(cmd, kForwardRange);
   target_->end_frame(cmd);
 
@@ -156,6 +160,7 @@ void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
   gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_HOST_READ_BIT);
+  if (background_) background_->record(cmd, hdr_readback_, views, target_->desc().width, target_->desc().height);
   if (timer_) timer_->begin(cmd, kTonemapRange);
   const auto pixels = static_cast<std::uint32_t>(resolved.layer_bytes() / 8 * views.size());
   tonemapper_.record(cmd, hdr_readback_, display_readback_, pixels, options_.tone_curve,

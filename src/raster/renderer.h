@@ -21,6 +21,7 @@
 #include "gpu/commands.h"
 #include "gpu/timestamps.h"
 #include "raster/brdf_tables.h"
+#include "raster/environment_background.h"
 #include "raster/forward_pass.h"
 #include "raster/frame_resources.h"
 #include "raster/gpu_meshes.h"
@@ -179,6 +180,7 @@ class Renderer {
   BrdfTables brdf_tables_;
   std::unique_ptr<ForwardPass> forward_;
   Tonemapper tonemapper_;
+  std::optional<EnvironmentBackground> background_;  // the scene's environment map, if any
   std::optional<gpu::TimestampQueries> timer_;
   std::unique_ptr<RenderTarget> target_;
   gpu::Buffer hdr_readback_;      // RGBA16F pixels of a batch's views, view after view

@@ -16,14 +16,19 @@ EnvironmentChoice choose_environment(const Scene& scene, const std::optional<glm
   return {glm::vec3(0.0f), EnvironmentSource::None};
 }
 
-EnvironmentChoice apply_environment(Scene& scene, const std::optional<glm::vec3>& sky) {
-  const EnvironmentChoice c = choose_environment(scene, sky);
+EnvironmentChoice apply_environment(Scene& scene, const std::optional<glm::vec3>& sky,
+                                    std::shared_ptr<const EnvironmentMap> map) {
+  const EnvironmentChoice c =
+      map ? EnvironmentChoice{glm::vec3(0.0f), EnvironmentSource::Map} : choose_environment(scene, sky);
   scene.sidecar.environment = c.radiance;
+  scene.environment_map = std::move(map);
   return c;
 }
 
 const char* environment_source_name(EnvironmentSource source) {
   switch (source) {
+    case EnvironmentSource::Map:
+      return "--environment";
     case EnvironmentSource::CommandLine:
       return "--sky";
     case EnvironmentSource::Sidecar:

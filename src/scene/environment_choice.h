@@ -2,8 +2,10 @@
 // light at all (no KHR_lights_punctual light, no emissive surface) and rendered black; like glTF
 // viewers, ddish then lights them with a neutral default sky. The command line (--sky) and the
 // sidecar's environment.radiance, in that order, win over the default, and 0 switches it off.
+// An environment map (--environment, scene/environment_map.h) wins over all of them.
 #pragma once
 
+#include <memory>
 #include <optional>
 
 #include <glm/glm.hpp>
@@ -18,10 +20,10 @@ namespace ddish::scene {
 // curve, which keeps highlights off the clip.
 inline constexpr float kDefaultSkyRadiance = 1.0f;
 
-enum class EnvironmentSource { CommandLine, Sidecar, DefaultSky, None };
+enum class EnvironmentSource { Map, CommandLine, Sidecar, DefaultSky, None };
 
 struct EnvironmentChoice {
-  glm::vec3 radiance{0.0f};
+  glm::vec3 radiance{0.0f};  // the uniform radiance (0 with a map)
   EnvironmentSource source = EnvironmentSource::None;
 };
 
@@ -33,10 +35,12 @@ bool has_own_light(const Scene& scene);
 // the scene has no light of its own, else none (radiance 0).
 EnvironmentChoice choose_environment(const Scene& scene, const std::optional<glm::vec3>& sky);
 
-// choose_environment's radiance made the scene's environment (what every renderer reads).
-EnvironmentChoice apply_environment(Scene& scene, const std::optional<glm::vec3>& sky);
+// choose_environment's radiance made the scene's environment (what every renderer reads); a
+// map, when given, replaces the uniform radiance (which becomes 0).
+EnvironmentChoice apply_environment(Scene& scene, const std::optional<glm::vec3>& sky,
+                                    std::shared_ptr<const EnvironmentMap> map = nullptr);
 
-// "--sky", "sidecar", "default sky (the scene has no light)", "none".
+// "--environment", "--sky", "sidecar", "default sky (the scene has no light)", "none".
 const char* environment_source_name(EnvironmentSource source);
 
 }  // namespace ddish::scene

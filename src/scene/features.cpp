@@ -58,6 +58,7 @@ SceneFeatures analyze(const Scene& scene) {
   f.animations = scene.animations.size();
   f.animation_duration = scene.animation_duration();
   f.environment = scene.environment();
+  f.environment_map = scene.environment_map != nullptr;
   f.bounds = scene.bounds();
   return f;
 }

@@ -50,11 +50,14 @@ struct SceneFeatures {
   std::size_t animations = 0;
   double animation_duration = 0.0;  // seconds
 
-  glm::vec3 environment{0.0f};
+  glm::vec3 environment{0.0f};  // the uniform radiance
+  bool environment_map = false;  // an equirectangular map (--environment)
   Aabb bounds;  // at the current pose
 
   std::size_t punctual_lights() const { return directional_lights + point_lights + spot_lights; }
-  bool has_environment() const { return glm::any(glm::greaterThan(environment, glm::vec3(0.0f))); }
+  bool has_environment() const {
+    return environment_map || glm::any(glm::greaterThan(environment, glm::vec3(0.0f)));
+  }
 };
 
 SceneFeatures analyze(const Scene& scene);

@@ -12,6 +12,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "scene/gltf_draco.h"
 #include "scene/gltf_internal.h"
 #include "scene/required_extensions.h"
 #include "scene/sidecar.h"
@@ -26,14 +27,10 @@ bool supported_extension(const std::string& name) {
   return name == "KHR_lights_punctual" || name == "KHR_materials_emissive_strength" ||
          name == "EXT_mesh_gpu_instancing" || name == "KHR_materials_unlit" ||
          name == "KHR_texture_transform" || name == "KHR_materials_ior" ||
-         name == "KHR_materials_specular";
+         name == "KHR_materials_specular" || name == "KHR_draco_mesh_compression";
 }
 
 LoadError unsupported_extension(const std::string& path, const std::string& ext) {
-  if (ext == "KHR_draco_mesh_compression")
-    return LoadError(path, "requires unsupported extension KHR_draco_mesh_compression (ddish "
-                           "does not decode Draco-compressed meshes; give it the uncompressed "
-                           "file)");
   return LoadError(path, "requires unsupported extension " + ext);
 }
 
@@ -240,8 +237,7 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   std::string err, warn;
   bool ok = false;
   try {
-    ok = is_binary_gltf(path) ? parser.LoadBinaryFromFile(&model, &err, &warn, path)
-                              : parser.LoadASCIIFromFile(&model, &err, &warn, path);
+    ok = gltf::read_gltf(parser, model, err, warn, path, is_binary_gltf(path));
   } catch (const std::exception& e) {
     throw LoadError(path, std::string("not a valid glTF file (") + e.what() + ")");
   }
@@ -257,9 +253,10 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   for (const auto& ext : model.extensionsRequired)
     if (!supported_extension(ext)) throw unsupported_extension(path, ext);
 
-  gltf::Context ctx{model, path};
   Scene scene;
   scene.path = path;
+  gltf::decode_draco(model, path, scene.warnings);  // before anything reads an accessor
+  gltf::Context ctx{model, path};
   // Optional extensions ddish does not implement are ignored, as glTF allows, but said so.
   for (const auto& ext : model.extensionsUsed)
     if (!supported_extension(ext))

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 
 #include "scene/aabb.h"
 #include "scene/animation.h"
+#include "scene/environment_map.h"
 
 namespace ddish::scene {
 
@@ -217,6 +219,9 @@ struct Scene {
   std::vector<Camera> cameras;
   std::vector<Animation> animations;
   Sidecar sidecar;
+  // An equirectangular environment (--environment) in place of the uniform one; the uniform
+  // radiance is then 0 (app/lighting_options.h). Every renderer adds both.
+  std::shared_ptr<const EnvironmentMap> environment_map;
   double time = 0.0;  // the time the scene is posed at
   // What the loader skipped but could still load (points/lines, orthographic cameras, ...),
   // one line each, for `ddish info`.

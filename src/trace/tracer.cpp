@@ -7,6 +7,9 @@
 //   with which next-event estimation would have picked the same point.
 // - Punctual lights are deltas: next-event estimation only. The uniform environment is reached
 //   by BSDF sampling only (no MIS: a uniform radiance gains nothing from light sampling).
+//   An environment map (--environment) is importance-sampled (trace/environment_light.h): one
+//   next-event sample per scattering, weighted by the power heuristic against BSDF sampling,
+//   and an escaping BSDF-sampled ray is weighted the other way (the camera's own ray fully).
 // - A back face of a single-sided surface is the inside of a closed object: it absorbs (and is
 //   reported, for probe classification).
 // - Indirect clamping applies to contributions that scattered at least twice.
@@ -18,10 +21,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "scene/scene.h"
 #include "trace/bsdf.h"
 #include "trace/embree_scene.h"
+#include "trace/environment_light.h"
 #include "trace/lights.h"
 #include "trace/surface.h"
 #include "trace/texture_lookup.h"
@@ -30,12 +35,15 @@ namespace ddish::trace {
 
 struct Tracer::Impl {
   Impl(const scene::Scene& s, const PathOptions& o)
-      : scene(&s), textures(s), embree(s, textures), lights(s, textures), options(o) {}
+      : scene(&s), textures(s), embree(s, textures), lights(s, textures), options(o) {
+    if (s.environment_map) environment.emplace(s.environment_map);
+  }
 
   const scene::Scene* scene;
   TextureSet textures;
   EmbreeScene embree;
   LightSet lights;
+  std::optional<EnvironmentLight> environment;  // the scene's map, when it has one
   PathOptions options;
   mutable std::atomic<std::uint64_t> rays{0};
   mutable std::atomic<std::uint64_t> invalid{0};
@@ -105,7 +113,13 @@ PathSample Tracer::trace_path(const Ray& primary, Sampler& sampler) const {
     Hit hit;
     ++rays;
     if (!im.embree.intersect(ray, query, hit)) {
-      add(beta * scene.environment(), depth);
+      glm::vec3 sky = scene.environment();
+      if (im.environment) {
+        const float w =
+            depth > 0 ? power_heuristic(prev_bsdf_pdf, im.environment->pdf(ray.direction)) : 1.0f;
+        sky += im.environment->radiance(ray.direction) * w;
+      }
+      add(beta * sky, depth);
       break;
     }
     cone_width += spread * hit.t;
@@ -180,6 +194,21 @@ PathSample Tracer::trace_path(const Ray& primary, Sampler& sampler) const {
           if (len > 0.0f && !im.embree.occluded(origin, d / len, 0.0f, len, query)) {
             const float w = power_heuristic(ls.pdf, bsdf.pdf(wo, wi));
             add(beta * f * ls.radiance * (w / ls.pdf), depth + 1);
+          }
+        }
+      }
+    }
+
+    if (im.environment && !im.environment->empty()) {
+      EnvironmentSample es;
+      if (im.environment->sample(sampler.next2d(), es) && glm::dot(es.wi, sp.ng) > 0.0f) {
+        const glm::vec3 wi = sp.shading.to_local(es.wi);
+        const glm::vec3 f = bsdf.eval(wo, wi) * std::max(wi.z, 0.0f);
+        if (glm::any(glm::greaterThan(f, glm::vec3(0.0f)))) {
+          ++rays;
+          if (!im.embree.occluded(origin, es.wi, 0.0f, std::numeric_limits<float>::infinity(), query)) {
+            const float w = power_heuristic(es.pdf, bsdf.pdf(wo, wi));
+            add(beta * f * es.radiance * (w / es.pdf), depth + 1);
           }
         }
       }
