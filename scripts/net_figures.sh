@@ -33,9 +33,11 @@ for enc in fp16 shared-exponent compact; do
     psnr=$("$B/ddish" compare "$D/view/frame_0000.exr" "$D/render/frame_0004.exr" | awk '/psnr/ {print $2}')
     python3 - "$D/serve.json" "$enc" "${z:+yes}" "$psnr" <<'PY'
 import json, sys
-t = json.load(open(sys.argv[1]))["ticks"]
+d = json.load(open(sys.argv[1]))
+t = d["ticks"]
 first = next(x for x in t if x["probes_sent"] > 0)
-print(f'{sys.argv[2]},{sys.argv[3] or "no"},{first["bytes"]},{first["probes_sent"]},{(first["bytes"] - 88) / first["probes_sent"]:.2f},{sys.argv[4]}')
+headers = 88 * d["summary"]["bricks"]  # one frame per brick (4x4x4 probes) per tick
+print(f'{sys.argv[2]},{sys.argv[3] or "no"},{first["bytes"]},{first["probes_sent"]},{(first["bytes"] - headers) / first["probes_sent"]:.2f},{sys.argv[4]}')
 PY
     port=$((port + 2))
   done

@@ -121,7 +121,7 @@ struct TickRecord {
 };
 
 void write_timings(const std::string& path, const std::vector<TickRecord>& ticks,
-                   const net::ProbeServer& server, double seconds) {
+                   const net::ProbeServer& server, double seconds, std::size_t bricks) {
   nlohmann::ordered_json doc;
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   std::uint64_t updates = 0;
@@ -145,6 +145,7 @@ void write_timings(const std::string& path, const std::vector<TickRecord>& ticks
   doc["summary"] = {{"ticks", ticks.size()},
                     {"updates", updates},
                     {"seconds", seconds},
+                    {"bricks", bricks},  // owned: one frame (88-byte header) each per tick
                     {"bytes_published", server.bytes_published()},
                     {"bytes_per_second", seconds > 0.0 ? double(server.bytes_published()) / seconds : 0.0},
                     {"snapshots_sent", server.snapshots_sent()},
@@ -290,7 +291,7 @@ int run_serve(const ServeArgs& a) {
                ticks.size(), updates, static_cast<unsigned long long>(server.bytes_published()),
                static_cast<unsigned long long>(server.snapshots_sent()));
   if (!a.timings.empty()) {
-    write_timings(a.timings, ticks, server, seconds);
+    write_timings(a.timings, ticks, server, seconds, owned.size());
     std::printf("wrote %s\n", a.timings.c_str());
   }
   return 0;

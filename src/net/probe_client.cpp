@@ -114,7 +114,9 @@ struct ProbeClient::Impl {
   Impl(const ClientOptions& o, probes::ProbeVolume& v, std::uint64_t id)
       : options(o), volume(v), scene_id(id), layout(v.grid()) {
     const glm::vec3 spacing = v.grid().spacing();
-    margin = std::max({spacing.x, spacing.y, spacing.z});  // a camera's step before the next frame
+    // The bricks' boxes already reach one cell past their probes; a quarter cell more covers a
+    // camera's step before its next subscription takes effect.
+    margin = 0.25f * std::max({spacing.x, spacing.y, spacing.z});
     // A frame cannot hold more than a brick's probes: anything larger is a lie.
     limits.max_payload_bytes = std::size_t(kBrickEdge * kBrickEdge * kBrickEdge) * (5 + 1 + 152) + 64;
     const std::vector<Endpoint> endpoints = parse_endpoint_list(o.connect);
