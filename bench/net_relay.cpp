@@ -49,8 +49,8 @@ int main(int argc, char** argv) {
   }
   const probes::ProbeGrid grid(scene::Aabb{glm::vec3(0.0f), glm::vec3(float(n))}, {n, n, n});
   const net::BrickLayout layout(grid);
-  std::printf("clients,grid_probes,bricks,seconds,ticks,relay_parts_in_per_s,relay_mb_in_per_s,"
-              "relay_parts_out_per_s,relay_mb_out_per_s,client_frames_per_s_each,client_mb_per_s_each,"
+  std::printf("clients,grid_probes,bricks,seconds,ticks,relay_messages_in_per_s,relay_mb_in_per_s,"
+              "relay_messages_out_per_s,relay_mb_out_per_s,client_frames_per_s_each,client_mb_per_s_each,"
               "client_frames_applied_fraction\n");
   for (int clients : client_counts) {
     const std::string server_address = "tcp://127.0.0.1:" + std::to_string(port);
@@ -133,8 +133,8 @@ int main(int argc, char** argv) {
     }
     // The relay's counts cover its whole run (the warm-up's few frames are not published).
     std::printf("%d,%u,%u,%.2f,%llu,%.0f,%.2f,%.0f,%.2f,%.0f,%.2f,%.3f\n", clients, grid.probe_count(),
-                layout.brick_count(), elapsed, static_cast<unsigned long long>(ticks), double(stats.parts_in) / elapsed,
-                double(stats.bytes_in) / elapsed / 1e6, double(stats.parts_out) / elapsed,
+                layout.brick_count(), elapsed, static_cast<unsigned long long>(ticks), double(stats.messages_in) / elapsed,
+                double(stats.bytes_in) / elapsed / 1e6, double(stats.messages_out) / elapsed,
                 double(stats.bytes_out) / elapsed / 1e6, double(received) / clients / elapsed,
                 double(bytes) / clients / elapsed / 1e6, received > 0 ? double(applied) / double(received) : 0.0);
     std::fflush(stdout);

@@ -57,10 +57,10 @@ int run_relay(const RelayArgs& a) {
   });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr,
-               "relay: stopped after %.1f s: %llu parts (%llu bytes) in, %llu parts (%llu bytes) out, "
+               "relay: stopped after %.1f s: %llu messages (%llu bytes) in, %llu messages (%llu bytes) out, "
                "%llu subscription messages upstream\n",
-               seconds, static_cast<unsigned long long>(stats.parts_in), static_cast<unsigned long long>(stats.bytes_in),
-               static_cast<unsigned long long>(stats.parts_out), static_cast<unsigned long long>(stats.bytes_out),
+               seconds, static_cast<unsigned long long>(stats.messages_in), static_cast<unsigned long long>(stats.bytes_in),
+               static_cast<unsigned long long>(stats.messages_out), static_cast<unsigned long long>(stats.bytes_out),
                static_cast<unsigned long long>(stats.subscriptions));
   return 0;
 }

@@ -72,10 +72,10 @@ RelayStats Relay::run(const std::function<bool()>& stop) {
     for (std::size_t k = 0; k < 8; ++k)
       if (parts[k].size() == 8) std::memcpy(&v[k], parts[k].data(), 8);
     // zmq_proxy's order: frontend in (msgs, bytes), frontend out, backend in, backend out.
-    stats.parts_in = v[0];
+    stats.messages_in = v[0];
     stats.bytes_in = v[1];
     stats.subscriptions = v[2];
-    stats.parts_out = v[6];
+    stats.messages_out = v[6];
     stats.bytes_out = v[7];
   }
   s.control.send(zmq::str_buffer("TERMINATE"));

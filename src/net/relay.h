@@ -23,10 +23,11 @@ struct RelayOptions {
   int heartbeat_ms = 250;
 };
 
-// zmq_proxy's counts: message parts and bytes, frontend (from servers) and backend (to clients).
+// zmq_proxy's counts: messages (a brick's [topic, frame] is one) and bytes, frontend (from the
+// servers) and backend (to the clients).
 struct RelayStats {
-  std::uint64_t parts_in = 0, bytes_in = 0;    // received from the servers
-  std::uint64_t parts_out = 0, bytes_out = 0;  // sent to the clients (each part counted once, not per client)
+  std::uint64_t messages_in = 0, bytes_in = 0;    // received from the servers
+  std::uint64_t messages_out = 0, bytes_out = 0;  // sent to the clients (once each, however many take it)
   std::uint64_t subscriptions = 0;             // subscription messages passed upstream
 };
 
