@@ -6,7 +6,10 @@
 // relay each in a thread, the clients taking turns in another. Prints one CSV row per client
 // count. On a machine shared with the clients and the server this is a lower bound on the
 // relay's own rate.
-// Usage: net_relay [--grid N] [--seconds S] [--clients 1,4,8] [--port P]
+// The server ticks at --fps (one frame per brick per tick). Unthrottled, with clients that cannot
+// keep up, libzmq 4.3.4 was seen to abort ("Assertion failed: _input_stopped", libzmq issue
+// 3937), so the rate is bounded.
+// Usage: net_relay [--grid N] [--fps F] [--seconds S] [--clients 1,4,8] [--port P]
 #include <unistd.h>
 
 #include <atomic>
@@ -31,13 +34,14 @@ using namespace ddish;
 
 int main(int argc, char** argv) {
   int n = 16, port = 23000;
-  double seconds = 3.0;
+  double seconds = 3.0, fps = 30.0;
   std::vector<int> client_counts = {1, 4, 8};
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string k = argv[i], v = argv[i + 1];
     if (k == "--grid") n = std::stoi(v);
     else if (k == "--seconds") seconds = std::stod(v);
     else if (k == "--port") port = std::stoi(v);
+    else if (k == "--fps") fps = std::stod(v);
     else if (k == "--clients") {
       client_counts.clear();
       std::stringstream ss(v);
@@ -49,7 +53,7 @@ int main(int argc, char** argv) {
   }
   const probes::ProbeGrid grid(scene::Aabb{glm::vec3(0.0f), glm::vec3(float(n))}, {n, n, n});
   const net::BrickLayout layout(grid);
-  std::printf("clients,grid_probes,bricks,seconds,ticks,relay_messages_in_per_s,relay_mb_in_per_s,"
+  std::printf("clients,grid_probes,bricks,fps,seconds,ticks,relay_messages_in_per_s,relay_mb_in_per_s,"
               "relay_messages_out_per_s,relay_mb_out_per_s,client_frames_per_s_each,client_mb_per_s_each,"
               "client_frames_applied_fraction\n");
   for (int clients : client_counts) {
@@ -69,7 +73,7 @@ int main(int argc, char** argv) {
       volume.state(i).flags = 0;
       volume.state(i).updates = 1;
     }
-    net::ProbeServer server({.bind = server_address});
+    net::ProbeServer server({.bind = server_address, .send_hwm = int(8 * layout.brick_count())});
     net::Relay relay({.upstream = {server_address}, .bind = relay_address});
     std::atomic<bool> stop{false}, go{false};
     net::RelayStats stats;
@@ -88,7 +92,10 @@ int main(int argc, char** argv) {
       const auto snapshot = [&](std::uint32_t b) {
         return b < streams.size() ? streams[b].snapshot() : std::vector<std::uint8_t>{};
       };
+      auto next = std::chrono::steady_clock::now();
       while (!stop) {
+        next += std::chrono::microseconds(std::int64_t(1e6 / fps));
+        std::this_thread::sleep_until(next);
         ++ticks;
         for (std::uint32_t i = 0; i < volume.probe_count(); ++i)  // every probe moves a little
           volume.coefficients(i)[0] *= (ticks % 2) ? 1.01f : 1.0f / 1.01f;
@@ -132,8 +139,8 @@ int main(int argc, char** argv) {
       received += now - received_before[std::size_t(c)];
     }
     // The relay's counts cover its whole run (the warm-up's few frames are not published).
-    std::printf("%d,%u,%u,%.2f,%llu,%.0f,%.2f,%.0f,%.2f,%.0f,%.2f,%.3f\n", clients, grid.probe_count(),
-                layout.brick_count(), elapsed, static_cast<unsigned long long>(ticks), double(stats.messages_in) / elapsed,
+    std::printf("%d,%u,%u,%.0f,%.2f,%llu,%.0f,%.2f,%.0f,%.2f,%.0f,%.2f,%.3f\n", clients, grid.probe_count(),
+                layout.brick_count(), fps, elapsed, static_cast<unsigned long long>(ticks), double(stats.messages_in) / elapsed,
                 double(stats.bytes_in) / elapsed / 1e6, double(stats.messages_out) / elapsed,
                 double(stats.bytes_out) / elapsed / 1e6, double(received) / clients / elapsed,
                 double(bytes) / clients / elapsed / 1e6, received > 0 ? double(applied) / double(received) : 0.0);

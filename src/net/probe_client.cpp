@@ -122,6 +122,8 @@ struct ProbeClient::Impl {
     const std::vector<Endpoint> endpoints = parse_endpoint_list(o.connect);
     std::optional<Endpoint> relay;
     if (!o.relay.empty()) relay = parse_endpoint(o.relay);
+    // Eight ticks of every brick queue before ZeroMQ drops (then the client re-snapshots).
+    subscriber.set(zmq::sockopt::rcvhwm, int(std::max<std::uint32_t>(1000, 8 * layout.brick_count())));
     set_common(subscriber, o, !relay);  // a relay speaks plaintext (it binds loopback unless told otherwise)
     watch(subscriber, sub_events, this, "subscription");
     const std::uint32_t bricks = layout.brick_count();

@@ -1,5 +1,6 @@
 #include "net/probe_server.h"
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <chrono>
@@ -122,7 +123,7 @@ ProbeServer::ProbeServer(const ServerOptions& options) : impl_(std::make_unique<
       s->set(zmq::sockopt::zap_domain, "ddish");
     }
   }
-  impl_->publisher.set(zmq::sockopt::sndhwm, 64);
+  impl_->publisher.set(zmq::sockopt::sndhwm, std::max(1, options.send_hwm));
   impl_->requests.set(zmq::sockopt::router_mandatory, 0);
   for (auto [socket, address] : {std::pair{&impl_->publisher, e.publisher()},
                                  std::pair{&impl_->requests, e.requests()}}) {

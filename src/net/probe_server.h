@@ -39,6 +39,9 @@ struct ServerOptions {
   int client_timeout_ms = 2000;
   std::function<void(const std::string&)> log;  // one line per event
   std::optional<CurveServerKeys> curve;          // none: plaintext
+  // Frames queued per subscriber before the publisher drops them (the subscriber then sees a gap
+  // and takes a snapshot): a few ticks of every owned brick (serve: 8 x bricks, at least 64).
+  int send_hwm = 64;
 };
 
 // Microseconds of the steady clock: the time base of server_time_us and of the client's clock.

@@ -33,6 +33,8 @@ Relay::Relay(const RelayOptions& options) : impl_(std::make_unique<Impl>()) {
     s->set(zmq::sockopt::heartbeat_ivl, options.heartbeat_ms);
     s->set(zmq::sockopt::heartbeat_timeout, 4 * options.heartbeat_ms);
     s->set(zmq::sockopt::heartbeat_ttl, 4 * options.heartbeat_ms);
+    s->set(zmq::sockopt::sndhwm, options.hwm);
+    s->set(zmq::sockopt::rcvhwm, options.hwm);
   }
   impl_->frontend.set(zmq::sockopt::reconnect_ivl, 100);
   impl_->frontend.set(zmq::sockopt::reconnect_ivl_max, 0);

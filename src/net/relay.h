@@ -21,6 +21,10 @@ struct RelayOptions {
   std::vector<std::string> upstream;  // the servers' publisher addresses, tcp://HOST:PORT
   std::string bind = "tcp://127.0.0.1:5600";
   int heartbeat_ms = 250;
+  // Messages queued per client (and from each server) before the relay drops them; a client
+  // that missed one takes a snapshot. 20,000 is five ticks of a 4,096-brick volume, about 40 MB
+  // of compact bricks.
+  int hwm = 20000;
 };
 
 // zmq_proxy's counts: messages (a brick's [topic, frame] is one) and bytes, frontend (from the
