@@ -357,10 +357,10 @@ ProbeClient::ProbeClient(const ClientOptions& options, probes::ProbeVolume& volu
 
 ProbeClient::~ProbeClient() = default;
 
-ClientPoll ProbeClient::poll(int wait_ms) {
+ClientPoll ProbeClient::poll(int wait_ms, bool until_synced) {
   ClientPoll out;
   try {
-    poll_until(std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms), out);
+    poll_until(std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms), until_synced, out);
   } catch (const zmq::error_t& e) {
     // A signal (Ctrl-C, SIGTERM) can interrupt any ZeroMQ call, even a non-blocking one: the
     // frame goes on with what was received so far, and the caller looks at its stop flag.
@@ -369,7 +369,7 @@ ClientPoll ProbeClient::poll(int wait_ms) {
   return out;
 }
 
-void ProbeClient::poll_until(std::chrono::steady_clock::time_point end, ClientPoll& out) {
+void ProbeClient::poll_until(std::chrono::steady_clock::time_point end, bool until_synced, ClientPoll& out) {
   Impl& s = *impl_;
   while (true) {
     // What is queued first: a frame that took longer than stale_ms to render must not make a
@@ -390,7 +390,7 @@ void ProbeClient::poll_until(std::chrono::steady_clock::time_point end, ClientPo
       s.request_snapshots(now);
       s.receive(out);
     }
-    if (out.frames_applied > 0 || std::chrono::steady_clock::now() >= end) break;
+    if ((out.frames_applied > 0 && (!until_synced || synced())) || std::chrono::steady_clock::now() >= end) break;
     std::vector<zmq::pollitem_t> items = {zmq::pollitem_t{s.subscriber.handle(), 0, ZMQ_POLLIN, 0}};
     for (const auto& server : s.servers) items.push_back({server->requests.handle(), 0, ZMQ_POLLIN, 0});
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(

@@ -71,8 +71,10 @@ class ProbeClient {
   ProbeClient& operator=(const ProbeClient&) = delete;
 
   // Takes every waiting message; waits up to wait_ms for the first one that brings probes
-  // (0: does not wait). Asks for snapshots as needed. A signal ends the wait early.
-  ClientPoll poll(int wait_ms);
+  // (0: does not wait), or with `until_synced` until every needed brick is held (a first frame:
+  // the snapshots of several servers). Asks for snapshots as needed. A signal ends the wait
+  // early.
+  ClientPoll poll(int wait_ms, bool until_synced = false);
   // Sends the views to every server and subscribes to the bricks they need (no views: no
   // change).
   void send_views(const std::vector<scene::View>& views);
@@ -95,7 +97,7 @@ class ProbeClient {
 
  private:
   struct Impl;
-  void poll_until(std::chrono::steady_clock::time_point end, ClientPoll& out);
+  void poll_until(std::chrono::steady_clock::time_point end, bool until_synced, ClientPoll& out);
   std::unique_ptr<Impl> impl_;
 };
 

@@ -66,8 +66,8 @@ TEST_F(ServeBricks, TwoServersAndARelayRenderWhatOneProcessRenders) {
   const cli::Result room = run("view " + cli::cornell() + " --grid 8,4,4 " + kImage + " --connect " + s0 + "," + s1 +
                                " --relay " + relay + " --out " + quote((dir_ / "room").string()));
   ASSERT_EQ(room.code, 0) << room.err;
-  EXPECT_NE(room.err.find("probes from " + s0 + ": snapshot of frame 3 ("), std::string::npos) << room.err;
-  EXPECT_NE(room.err.find("probes from " + s1 + ": snapshot of frame 3 ("), std::string::npos) << room.err;
+  EXPECT_NE(room.err.find("probes from " + s0 + ": snapshot of frame "), std::string::npos) << room.err;
+  EXPECT_NE(room.err.find("probes from " + s1 + ": snapshot of frame "), std::string::npos) << room.err;
   const cli::Result c = run("compare " + quote((dir_ / "room/frame_0000.exr").string()) + " " +
                             quote((dir_ / "render/frame_0002.exr").string()));
   ASSERT_EQ(c.code, 0) << c.err;
@@ -77,7 +77,7 @@ TEST_F(ServeBricks, TwoServersAndARelayRenderWhatOneProcessRenders) {
   const cli::Result left = run("view " + cli::cornell() + " --grid 8,4,4 " + kImage + " " + kLeftWall + " --connect " +
                                s0 + "," + s1 + " --out " + quote((dir_ / "left_view").string()));
   ASSERT_EQ(left.code, 0) << left.err;
-  EXPECT_NE(left.err.find("probes from " + s0 + ": snapshot of frame 3 ("), std::string::npos) << left.err;
+  EXPECT_NE(left.err.find("probes from " + s0 + ": snapshot of frame "), std::string::npos) << left.err;
   EXPECT_EQ(left.err.find("probes from " + s1), std::string::npos) << left.err;  // nothing of server 1
   const cli::Result l = run("compare " + quote((dir_ / "left_view/frame_0000.exr").string()) + " " +
                             quote((dir_ / "left/frame_0002.exr").string()));
