@@ -7,8 +7,9 @@
 #   3. probe age at a client (server trace end -> upload, ms): median and 95th percentile;
 #   4. the server's work per tick (update + publish + requests, not idling) against 1, 2, 4 and 8
 #      clients (64x64 views each, visibility schedule), median over the ticks after the first 30;
-#   5. reconnection times from the 4-client x 10-restart fault test (tests/app), per client.
-# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24039; ~3 minutes.
+#   5. reconnection times from the 4-client x 10-restart fault test (tests/app), per client;
+#   6. what a relay forwards (bench/net_relay: bricks at 30 ticks/s to 1 and 4 clients).
+# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24039 and 24100-24107; ~3 minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build}
@@ -106,3 +107,6 @@ for name, c in json.load(open(sys.argv[1])).items():
     r = c["reconnect_s"]
     print(f'{name},{len(r)},{statistics.median(r):.3f},{max(r):.3f}')
 PY
+
+echo
+"$B/bench/net_relay" --grid 16 --fps 30 --seconds 3 --clients 1,4 --port 24100
