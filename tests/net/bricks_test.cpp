@@ -13,6 +13,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <zmq.hpp>
+#include <zmq_addon.hpp>
 
 #include "net/bricks.h"
 #include "net/probe_client.h"
@@ -279,6 +281,50 @@ TEST(Bricks, OneServerLostAndBackTheOtherGoesOn) {
   EXPECT_EQ(count(both_log, "probe server back at " + address(4)), 1);
   EXPECT_EQ(count(one_log, "lost the probe server"), 0);
   EXPECT_EQ(both.reconnects(), 1u);
+}
+
+// What a publisher can get wrong about bricks is dropped and counted by kind, one log line each:
+// a topic that names no brick (a longer one matches a subscription's prefix), a message of one
+// part, a keyframe on the subscription, a frame with probes outside its topic's brick. Nothing
+// of them reaches the volume.
+TEST(Bricks, MalformedBrickMessagesAreDroppedAndCounted) {
+  zmq::context_t context;
+  zmq::socket_t publisher(context, zmq::socket_type::pub);
+  publisher.set(zmq::sockopt::linger, 0);
+  publisher.bind(address(5));
+  probes::ProbeVolume all(grid(), 2);
+  for (std::uint32_t i = 0; i < all.probe_count(); ++i) {
+    all.set_sh(i, probe_at(i, 1));
+    all.state(i).flags = 0;
+    all.state(i).updates = 1;
+  }
+  PublishedProbes whole(grid(), 2, kScene, 5, {.encoding = Encoding::kHalf});  // both bricks in one stream
+  const std::vector<std::uint8_t> both = whole.publish(all, 1, 0, 0.0), keyframe = whole.snapshot();
+  std::vector<std::string> log;
+  probes::ProbeVolume mine(grid(), 2);
+  ProbeClient client(client_options(address(5), "", 2, &log), mine, kScene);
+  const std::string topic = brick_topic(0);
+  const auto enough = [&] {
+    return client.rejected(RejectKind::kBadHeader) >= 4 && client.rejected(RejectKind::kBadIndex) >= 2 &&
+           client.rejected(RejectKind::kSizeMismatch) >= 2;
+  };
+  for (int turn = 0; turn < 400 && !enough(); ++turn) {
+    std::array<zmq::const_buffer, 2> long_topic = {zmq::buffer(topic + "x"), zmq::buffer(both)};
+    std::array<zmq::const_buffer, 2> outside = {zmq::buffer(topic), zmq::buffer(both)};
+    std::array<zmq::const_buffer, 2> snapshot = {zmq::buffer(topic), zmq::buffer(keyframe)};
+    std::array<zmq::const_buffer, 1> one_part = {zmq::buffer(topic)};
+    if (turn % 10 == 0)
+      for (auto* m : {&long_topic, &outside, &snapshot}) zmq::send_multipart(publisher, *m);
+    if (turn % 10 == 0) zmq::send_multipart(publisher, one_part);
+    client.poll(5);
+  }
+  EXPECT_GE(client.rejected(RejectKind::kBadHeader), 4u);  // the long topic and the keyframe, twice each
+  EXPECT_GE(client.rejected(RejectKind::kBadIndex), 2u);
+  EXPECT_GE(client.rejected(RejectKind::kSizeMismatch), 2u);
+  EXPECT_EQ(log.size(), 3u);  // one line per kind
+  EXPECT_FALSE(client.ever_synced());
+  EXPECT_TRUE(untouched(mine, 0));
+  EXPECT_TRUE(untouched(mine, 1));
 }
 
 }  // namespace
