@@ -303,13 +303,13 @@ TEST(Bricks, MalformedBrickMessagesAreDroppedAndCounted) {
   std::vector<std::string> log;
   probes::ProbeVolume mine(grid(), 2);
   ProbeClient client(client_options(address(5), "", 2, &log), mine, kScene);
-  const std::string topic = brick_topic(0);
+  const std::string topic = brick_topic(0), longer = topic + "x";
   const auto enough = [&] {
     return client.rejected(RejectKind::kBadHeader) >= 4 && client.rejected(RejectKind::kBadIndex) >= 2 &&
            client.rejected(RejectKind::kSizeMismatch) >= 2;
   };
   for (int turn = 0; turn < 400 && !enough(); ++turn) {
-    std::array<zmq::const_buffer, 2> long_topic = {zmq::buffer(topic + "x"), zmq::buffer(both)};
+    std::array<zmq::const_buffer, 2> long_topic = {zmq::buffer(longer), zmq::buffer(both)};
     std::array<zmq::const_buffer, 2> outside = {zmq::buffer(topic), zmq::buffer(both)};
     std::array<zmq::const_buffer, 2> snapshot = {zmq::buffer(topic), zmq::buffer(keyframe)};
     std::array<zmq::const_buffer, 1> one_part = {zmq::buffer(topic)};
