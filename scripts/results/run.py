@@ -26,6 +26,7 @@ from error_time import section_error
 from dynamic import section_dynamic
 from schedule import section_schedule
 from service import section_service
+from soak import section_soak
 
 
 def machine(runner):
@@ -69,8 +70,8 @@ def main():
     ap = argparse.ArgumentParser(description="regenerate the results report")
     ap.add_argument("--quick", action="store_true", help="tiny sizes, Cornell box only (smoke test)")
     ap.add_argument("--out", default=str(ROOT / "docs"), help="write OUT/RESULTS.md and OUT/results/")
-    ap.add_argument("--sections", default="scaling,error,dynamic,schedule,service",
-                    help="comma-separated subset of scaling,error,dynamic,schedule,service (default: all)")
+    ap.add_argument("--sections", default="scaling,error,dynamic,schedule,service,soak",
+                    help="comma-separated subset of scaling,error,dynamic,schedule,service,soak (default: all)")
     a = ap.parse_args()
     cfg = QUICK if a.quick else FULL
 
@@ -106,6 +107,7 @@ def main():
         ("dynamic light", "dynamic", lambda: section_dynamic(runner, cfg, scenes, cache, results_dir, body)),
         ("scheduling", "schedule", lambda: section_schedule(runner, cfg, scenes, cache, results_dir, body)),
         ("probe service", "service", lambda: section_service(runner, cfg, results_dir, body)),
+        ("soak", "soak", lambda: section_soak(runner, cfg, results_dir, body)),
     ]
     chosen = set(a.sections.split(","))
     unknown = chosen - {key for _, key, _ in sections}
@@ -204,6 +206,13 @@ def headline(outcome):
             worst = max(float(r["max_s"]) for r in rec)
             lines.append(f"- Probe service faults: {len(rec)} clients × {rec[0]['reconnections']} server "
                          f"restarts, every client reconnected within {worst:.2f} s of the server's return.")
+    soak = outcome.get("soak")
+    if soak:
+        growth = ", ".join(f"{r['resource']} {r['growth_pct']:+.2f} %" for r in soak["rows"])
+        lines.append(f"- Soak, {soak['frames']} frames: after the warm-up {growth} "
+                     f"({'flat' if soak['flat'] else 'NOT flat'}); frame time "
+                     f"{soak['frame_ms_slope_per_1000']:+.3f} ms per 1000 frames "
+                     f"({'no upward trend' if soak['trend_ok'] else 'UPWARD TREND'}).")
     if len(lines) == 1:
         lines.append("- none: no section produced figures.")
     lines.append("")

@@ -55,6 +55,9 @@ FULL = {
         "sponza_camera": "CameraAlcove", "size": (160, 120), "ref_spp": 256, "frames": 16,
         "path_frames": 300, "path_size": (96, 96), "path_ref_spp": 1024,
     },
+    # Issue 15's soak: 10,000 frames of the animated Cornell box, the budget scheduler on, an
+    # image every 100th frame (about 5-6 min at 30 ms a frame).
+    "soak": {"frames": 10000, "size": (128, 128), "budget_ms": 30.0, "every": 100},
 }
 
 QUICK = {
@@ -81,6 +84,7 @@ QUICK = {
         "events": DYNAMIC_EVENTS, "still_frames": 30, "still_hysteresis": 0.999,
     },
     "schedule": None,
+    "soak": {"frames": 200, "size": (32, 32), "budget_ms": 30.0, "every": 50},
 }
 
 # The paper's settings (DDISH-GI): L2 probes, 256 paths per probe per update, the grid of the

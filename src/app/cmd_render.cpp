@@ -1,7 +1,7 @@
 // ddish render SCENE [--display single|stereo|PROFILE] [--views N] [--focal-distance M]
 //                    [--per-view] [--calibration FILE.json]
 //                    [--camera NODE|eye,target,up] [--fov DEG] [--width W --height H]
-//                    [--frames N] [--every] [--loop] [--fps F] [--time T] [--out DIR] [--timings FILE]
+//                    [--frames N] [--every[=N]] [--loop] [--fps F] [--time T] [--out DIR] [--timings FILE]
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
 //                    [--probe-samples N] [--hysteresis A] [--bounces N] [--msaa 1|4]
 //                    [--sample-shading] [--view-batch N] [--anisotropy N] [--tonemap linear|filmic]
@@ -109,7 +109,7 @@ struct RenderArgs {
   bool frames_given = false;  // --window without --frames runs until closed, writing no files
   LiveArgs live;
   bool monitor_given = false;
-  bool every = false;
+  int every = 0;  // --every[=N]: write frames k with (k + 1) % N == 0 too; 0 only the last
   bool loop = false;
   double fps = 30.0;
   double time = 0.0;
@@ -243,7 +243,7 @@ StreamArgs stream_args(const RenderArgs& a) {
 GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& placement,
                      const DisplayChoice& choice, const display::ViewSet& first,
                      const FrameWriter& writer, std::uint64_t identity,
-                     const std::optional<display::Calibration>& calibration) {
+                     const std::optional<display::Calibration>& calibration, TimingsFile* timings) {
   const bool remote = !a.connect.empty();
   std::unique_ptr<InProcessParts> local;
   if (!remote)
@@ -346,7 +346,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   const bool files = !live || a.frames_given;
   options.time = a.time;
   options.fps = a.fps;
-  options.every = a.every || live;  // the window is shown every frame; files as asked
+  options.every = live ? 1 : a.every;  // the window is shown every frame; files as asked
   // Ctrl-C: this frame is the last one, written whole; the window's close does the same.
   options.stop = controls ? &controls->stop() : &stop_flag();
   if (live) options.render_request = live->request(files);
@@ -364,10 +364,11 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   const FrameSink sink = [&](int k, raster::FrameOutput& frame) {
     if (live) {
       present_ms = live->present();
-      if (!files || !(a.every || k + 1 == options.frames || controls->stop().load()))
+      const bool asked = a.every > 0 && (k + 1) % a.every == 0;
+      if (!files || !(asked || k + 1 == options.frames || controls->stop().load()))
         return std::vector<fs::path>{};
     }
-    const std::string tag = a.every ? fmt::format("{:04d}", k) : "";
+    const std::string tag = a.every > 0 ? fmt::format("{:04d}", k) : "";
     queue.push(std::move(frame.views), fmt::format("frame_{:04d}", k), tag);
     return std::vector<fs::path>{};
   };
@@ -378,13 +379,14 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
       std::fprintf(stderr, "view: no probe server at %s after %d ms: rendering with %s until it answers\n",
                    a.connect.c_str(), a.wait_ms,
                    a.baked.empty() ? "direct light only" : ("the baked probes of " + a.baked).c_str());
+    if (timings) timings->add(*r.timings, r.counts);
     print_progress(r, options.frames);
     if (live) live->set_status(controls->status(first.name, r, present_ms));
   });
   const auto drain_start = std::chrono::steady_clock::now();
   run.result.written = queue.finish();
-  if (!run.result.timings.frames().empty())
-    run.result.timings.last().add(
+  if (timings && timings->last())
+    timings->last()->add(
         "output_drain",
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - drain_start).count());
   if (live) {
@@ -394,7 +396,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
       std::fflush(stdout);
       run.result.written.clear();
       std::fprintf(stderr, "%s: holding frame %zu in the window until it is closed\n", a.tag(),
-                   run.result.counts.size());
+                   run.result.frames);
       live->hold(stop_flag());
       run.window_closed = live->quit();
     }
@@ -430,10 +432,12 @@ int run_render(const RenderArgs& a) {
   if (!framing.empty()) std::fprintf(stderr, "%s: %s\n", a.tag(), framing.c_str());
   std::fprintf(stderr, "%s: %s\n", a.tag(), environment.c_str());
   allow_graceful_stop();
+  std::optional<TimingsFile> timings;
+  if (!a.timings.empty()) timings.emplace(a.timings, first);
   const GpuRun run = render_frames(a, s, placement, choice, first, writer,
                                    scene_identity(geometry, placement.grid, a.probe.sh_order),
-                                   calibration);
-  const std::size_t done = run.result.counts.size();
+                                   calibration, timings ? &*timings : nullptr);
+  const std::size_t done = run.result.frames;
   if (run.window_closed && stop_signal() == 0)
     std::fprintf(stderr, "%s: window closed after frame %zu\n", a.tag(), done);
   else if (run.result.stopped && a.live.window && !a.frames_given)
@@ -447,7 +451,7 @@ int run_render(const RenderArgs& a) {
                  a.time + double(done - 1) / a.fps,
                  a.timings.empty() ? "no later frame was rendered"
                                    : "--timings has the frames done");
-  if (!a.timings.empty()) write_render_timings(a.timings, run.result.timings, run.result.counts, first);
+  if (timings) timings->finish();
   for (const fs::path& p : run.result.written) std::printf("wrote %s\n", p.string().c_str());
   if (!a.timings.empty()) std::printf("wrote %s\n", a.timings.c_str());
   if (run.validation) {
@@ -496,7 +500,10 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
   cmd->add_flag("--hold", a.live.hold,
                 "with --window and --frames: after the last frame keep showing it until the window "
                 "is closed (Esc) or the process is signalled");
-  cmd->add_flag("--every", a.every, "write every frame, not only the last");
+  cmd->add_flag("--every{1}", a.every,
+                "--every: write every frame, not only the last; --every=N: every N-th frame "
+                "(frames N-1, 2N-1, ...) and the last")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--loop", a.loop,
                 "play the animations again and again: the scene time wraps at the longest "
                 "animation's duration (without it the last pose holds)");

@@ -240,6 +240,7 @@ int run_serve(const ServeArgs& a) {
     return brick < stream_of.size() && stream_of[brick] >= 0 ? published[std::size_t(stream_of[brick])].snapshot()
                                                             : std::vector<std::uint8_t>{};
   };
+  std::uint64_t ticks_done = 0;
   for (std::uint64_t tick = 1; !g_stop; ++tick) {
     const auto tick_start = std::chrono::steady_clock::now();
     if (a.seconds > 0.0 && std::chrono::duration<double>(tick_start - start).count() >= a.seconds) break;
@@ -285,11 +286,13 @@ int run_serve(const ServeArgs& a) {
     if (rec.updated && (updates <= 3 || updates % 100 == 0 || updates == a.frames))
       std::fprintf(stderr, "serve: update %d: %u probes traced in %.1f ms, %u sent (%zu bytes), %zu clients\n",
                    updates, rec.traced, rec.probe_ms, rec.published.sent, rec.published.bytes, rec.clients);
-    ticks.push_back(rec);
+    // Kept only for --timings: a server runs for days, and an idle tick must cost no memory.
+    ticks_done = tick;
+    if (!a.timings.empty()) ticks.push_back(rec);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::fprintf(stderr, "serve: stopped after %zu ticks (%d updates), %llu bytes published, %llu snapshots\n",
-               ticks.size(), updates, static_cast<unsigned long long>(server.bytes_published()),
+  std::fprintf(stderr, "serve: stopped after %llu ticks (%d updates), %llu bytes published, %llu snapshots\n",
+               static_cast<unsigned long long>(ticks_done), updates, static_cast<unsigned long long>(server.bytes_published()),
                static_cast<unsigned long long>(server.snapshots_sent()));
   if (!a.timings.empty()) {
     write_timings(a.timings, ticks, server, seconds, owned.size());

@@ -94,7 +94,17 @@ struct XrRun {
 };
 
 // Everything with OpenXR or Vulkan handles lives in here, destroyed in order before it returns.
-XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, std::uint64_t identity) {
+// The --timings file's views: the two eyes side by side.
+display::ViewSet eye_set(int width, int height) {
+  display::ViewSet set;
+  set.kind = display::ViewSetKind::Stereo;
+  set.name = "openxr";
+  set.layout = display::layout_from_tiles(2, 1, width, height);
+  return set;
+}
+
+XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, std::uint64_t identity,
+                  std::optional<TimingsFile>& timings) {
   XrRun run;
   const bool validation = gpu::validation_requested_by_environment();
   xr::Instance xri({.application_name = "ddish", .validation = validation});
@@ -104,6 +114,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
                                          eyes[0].height, eyes[1].width, eyes[1].height));
   run.eye_width = static_cast<int>(eyes[0].width);
   run.eye_height = static_cast<int>(eyes[0].height);
+  if (!a.timings.empty()) timings.emplace(a.timings, eye_set(run.eye_width, run.eye_height));
   std::fprintf(stderr, "xr: runtime %s, system %s, eyes %ux%u%s\n", xri.runtime_name().c_str(),
                xri.system_name().c_str(), eyes[0].width, eyes[0].height,
                xri.validation_enabled() ? ", OpenXR core validation on" : "");
@@ -144,7 +155,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
     FrameLoopOptions options;
     options.frames = a.frames > 0 ? a.frames : INT_MAX;
     options.fps = 90.0;  // scene time advances 1/90 s a frame
-    options.every = true;  // every frame goes to the headset
+    options.every = 1;  // every frame goes to the headset
     options.stop = &stop_flag();
     options.update_probes = !a.no_indirect;
     options.warmup = a.warmup;
@@ -157,6 +168,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
     };
     run.result = loop.run(options, sink, [&](const FrameReport& r) {
       if (r.warmup && r.warmup->rounds > 0) std::fprintf(stderr, "xr: %s\n", describe_warmup(*r.warmup, a.warmup).c_str());
+      if (timings) timings->add(*r.timings, r.counts);
       const XrFrameRecord& x = frames.records().back();
       std::fprintf(stderr,
                    "frame %d: probes %.1f ms (%u traced at %u samples), raster %.1f ms, frame %.1f ms of period "
@@ -176,15 +188,6 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
   return run;
 }
 
-void write_xr_timings(const std::string& path, const XrRun& run) {
-  display::ViewSet set;
-  set.kind = display::ViewSetKind::Stereo;
-  set.name = "openxr";
-  set.layout = display::layout_from_tiles(2, 1, run.eye_width, run.eye_height);
-  nlohmann::ordered_json doc = render_timings_json(run.result.timings, run.result.counts, set);
-  doc["xr"] = run.records_json;
-  io::write_file_atomically(path, doc.dump(2) + '\n');
-}
 
 int run_xr(const XrArgs& a) {
   check(a);
@@ -198,7 +201,8 @@ int run_xr(const XrArgs& a) {
   if (!framing.empty()) std::fprintf(stderr, "xr: %s\n", framing.c_str());
   std::fprintf(stderr, "xr: %s\n", environment.c_str());
   allow_graceful_stop();
-  const XrRun run = run_session(a, s, placement, scene_identity(geometry, placement.grid, a.probe.sh_order));
+  std::optional<TimingsFile> timings;
+  const XrRun run = run_session(a, s, placement, scene_identity(geometry, placement.grid, a.probe.sh_order), timings);
 
   const std::size_t n = run.records.size();
   const auto within = std::count_if(run.records.begin(), run.records.end(), [](const XrFrameRecord& r) { return r.within_period(); });
@@ -209,8 +213,8 @@ int run_xr(const XrArgs& a) {
   for (const std::string& st : run.states) states += (states.empty() ? "" : " ") + st;
   std::fprintf(stderr, "xr: %zu frames rendered, %zu within the display period; pose to submit median %.1f ms; session %s\n",
                n, static_cast<std::size_t>(within), latency.empty() ? 0.0 : latency[latency.size() / 2], states.c_str());
-  if (!a.timings.empty()) {
-    write_xr_timings(a.timings, run);
+  if (timings) {
+    timings->finish({{"xr", run.records_json}});
     std::printf("wrote %s\n", a.timings.c_str());
   }
   int code = 0;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 
+#include "app/process_resources.h"
 #include "probes/scheduler_record.h"
 
 namespace ddish::app {
@@ -44,6 +45,7 @@ struct FrameCounts {
   // rays); with update_probes off only its stages and budget are filled.
   probes::SchedulerFrameRecord schedule;
   std::optional<StreamFrameCounts> stream;  // remote probe source only
+  ProcessResources resources;                // sampled at the end of the frame
 };
 
 }  // namespace ddish::app

@@ -69,7 +69,7 @@ struct FrameLoopOptions {
   int frames = 1;
   double time = 0.0;  // t of frame 0, seconds
   double fps = 30.0;
-  bool every = false;             // write every frame, not only the last
+  int every = 0;                  // the sink gets frames k with (k + 1) % every == 0 (0: only the last)
   bool update_probes = true;      // false: render with the probes as they are
   // Checked once per frame, before its output: when raised, the frame is written as the last
   // one and the loop ends (Ctrl-C, app/interrupt.h). Null: never stops early.
@@ -95,11 +95,12 @@ struct FrameReport {
   const WarmupReport* warmup = nullptr;  // frame 0: the warm-up before it (rounds 0: none ran)
 };
 
+// What a run did. Nothing per frame is kept (a run of hours must not grow): the progress callback
+// sees each frame's timings and counts, and writes them where they are wanted (TimingsFile).
 struct FrameLoopResult {
-  metrics::TimingLog timings;
-  std::vector<FrameCounts> counts;  // one per frame
+  std::size_t frames = 0;  // frames done
   std::vector<std::filesystem::path> written;
-  bool stopped = false;  // ended early by FrameLoopOptions::stop; counts.size() frames were done
+  bool stopped = false;  // ended early by FrameLoopOptions::stop; `frames` were done
   WarmupReport warmup;  // rounds == 0: none ran
   bool paced_out = false;  // ended by the pacer (FrameStart::end) before `frames` frames
 };
@@ -122,7 +123,7 @@ class FrameLoop {
             probes::Scheduler& scheduler, UpdateOptionsFor update_options,
             probes::ProbeVolume& volume, raster::Renderer& renderer, ViewSource views);
 
-  // Runs the frames; `sink` (optional) gets the last frame, or every frame with options.every;
+  // Runs the frames; `sink` (optional) gets the last frame, or every options.every-th;
   // `progress` (optional) is called after each frame.
   FrameLoopResult run(const FrameLoopOptions& options, const FrameSink& sink = {},
                       const std::function<void(const FrameReport&)>& progress = {});

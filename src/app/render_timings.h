@@ -13,18 +13,24 @@
 //   {"forward_gpu": forward_gpu / views, "raster": (raster_record + shadow_gpu + forward_gpu +
 //   tonemap_gpu + raster_wait + readback) / views}; for `ddish view` also "stream":
 //   {"synced", "server_frame", "stale_ms", "probe_age_ms" (null until the server's clock is
-//   known), "bytes_received", "frames_applied", "rejected"} (app/frame_counts.h).
+//   known), "bytes_received", "frames_applied", "rejected"} (app/frame_counts.h); and
+//   "resources": {"rss_kb", "open_fds", "gpu_allocations", "gpu_bytes"}, sampled after the
+//   frame (app/process_resources.h).
 // The renderer times the forward pass of all views with one pair of timestamps (blocks of views
 // share passes under multiview), so per-view figures are the frame's time divided by the views.
+// The file is written as the frames come (TimingsFile): nothing per frame is kept in memory, so a
+// run of hours (a live window, a headset) stays flat; a stopped run's file holds the frames done.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
-#include <vector>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
-#include "app/frame_loop.h"
+#include "app/frame_counts.h"
 #include "display/view_set.h"
+#include "io/atomic_file.h"
 #include "metrics/timing.h"
 
 namespace ddish::app {
@@ -32,12 +38,35 @@ namespace ddish::app {
 // Raster milliseconds of a frame: every stage the rasterizer's frame costs.
 double raster_ms(const metrics::FrameTimings& frame);
 
-nlohmann::ordered_json render_timings_json(const metrics::TimingLog& log,
-                                           const std::vector<FrameCounts>& counts,
-                                           const display::ViewSet& set);
+// The document's head ("display", "per_view_method") and one frame's record.
+nlohmann::ordered_json timings_head_json(const display::ViewSet& set);
+nlohmann::ordered_json frame_record_json(const metrics::FrameTimings& t, const FrameCounts& c);
 
-// Writes render_timings_json; throws std::runtime_error when the file cannot be written.
-void write_render_timings(const std::filesystem::path& path, const metrics::TimingLog& log,
-                          const std::vector<FrameCounts>& counts, const display::ViewSet& set);
+// The --timings file of render, view and xr, written whole or not at all (io::AtomicFileWriter).
+// Throws std::runtime_error "cannot write FILE: REASON" from any call that writes.
+class TimingsFile {
+ public:
+  TimingsFile(const std::filesystem::path& path, const display::ViewSet& set);
+
+  // A frame's record. The newest one is held back until the next (or finish()), so that a stage
+  // measured after the loop (the output writer's drain) can still be added to it through last().
+  void add(const metrics::FrameTimings& t, const FrameCounts& c);
+  metrics::FrameTimings* last();  // the held frame, nullptr before the first
+  // Writes the held frame, the summary and `extra`'s members (OpenXR's records) and renames the
+  // file into place.
+  void finish(const nlohmann::ordered_json& extra = {});
+
+ private:
+  struct Held {
+    metrics::FrameTimings timings;
+    FrameCounts counts;
+  };
+  void flush_held();
+
+  io::AtomicFileWriter file_;
+  metrics::StageSummary summary_;
+  std::optional<Held> held_;
+  std::size_t frames_ = 0;
+};
 
 }  // namespace ddish::app

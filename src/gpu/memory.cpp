@@ -48,6 +48,22 @@ VkMemoryPropertyFlags preferred_properties(MemoryUse use) {
   return 0;
 }
 
+namespace {
+std::atomic<std::int64_t> g_allocations{0};
+std::atomic<std::int64_t> g_bytes{0};
+}  // namespace
+
+MemoryTally live_device_memory() {
+  return {g_allocations.load(std::memory_order_relaxed), g_bytes.load(std::memory_order_relaxed)};
+}
+
+void DeviceMemory::release() noexcept {
+  if (!memory_.get()) return;
+  memory_ = {};
+  g_allocations.fetch_sub(1, std::memory_order_relaxed);
+  g_bytes.fetch_sub(static_cast<std::int64_t>(size_), std::memory_order_relaxed);
+}
+
 DeviceMemory::DeviceMemory(const Device& device, const VkMemoryRequirements& requirements,
                            MemoryUse use) {
   const auto& props = device.memory_properties();
@@ -70,10 +86,14 @@ DeviceMemory::DeviceMemory(const Device& device, const VkMemoryRequirements& req
       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   if ((properties_ & host) == host)
     check(vkMapMemory(device.handle(), memory, 0, VK_WHOLE_SIZE, 0, &mapped_), "vkMapMemory");
+  // Counted once nothing can throw: a failed map frees the memory through memory_'s destructor.
+  g_allocations.fetch_add(1, std::memory_order_relaxed);
+  g_bytes.fetch_add(static_cast<std::int64_t>(size_), std::memory_order_relaxed);
 }
 
 DeviceMemory& DeviceMemory::operator=(DeviceMemory&& other) noexcept {
   if (this != &other) {
+    release();
     memory_ = std::move(other.memory_);
     size_ = std::exchange(other.size_, 0);
     type_index_ = std::exchange(other.type_index_, 0);

@@ -3,6 +3,7 @@
 // large buffers and images a frame needs; nothing here sub-allocates.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <utility>
 
@@ -30,6 +31,14 @@ std::uint32_t find_memory_type(const VkPhysicalDeviceMemoryProperties& propertie
 VkMemoryPropertyFlags required_properties(MemoryUse use);
 VkMemoryPropertyFlags preferred_properties(MemoryUse use);
 
+// Device memory this process holds through DeviceMemory, over every device: the count and bytes
+// of live vkAllocateMemory allocations. A long run's figures must stay flat (scripts/soak.sh).
+struct MemoryTally {
+  std::int64_t allocations = 0;
+  std::int64_t bytes = 0;
+};
+MemoryTally live_device_memory();
+
 class DeviceMemory {
  public:
   DeviceMemory() = default;
@@ -38,6 +47,7 @@ class DeviceMemory {
   DeviceMemory(const Device& device, const VkMemoryRequirements& requirements, MemoryUse use);
   DeviceMemory(DeviceMemory&& other) noexcept { *this = std::move(other); }
   DeviceMemory& operator=(DeviceMemory&& other) noexcept;
+  ~DeviceMemory() { release(); }
 
   VkDeviceMemory handle() const { return memory_.get(); }
   VkDeviceSize size() const { return size_; }
@@ -48,6 +58,8 @@ class DeviceMemory {
   void* mapped() const { return mapped_; }
 
  private:
+  void release() noexcept;  // frees the allocation and takes it off the tally
+
   // Freeing mapped memory unmaps it implicitly, so no separate unmap step is needed.
   DeviceHandle<VkDeviceMemory, vkFreeMemory> memory_;
   VkDeviceSize size_ = 0;

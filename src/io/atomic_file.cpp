@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
 
 namespace ddish::io {
 
@@ -124,6 +125,56 @@ void write_file_atomically(const fs::path& path, std::string_view bytes) {
     }
     if (::close(fd) != 0) throw std::runtime_error(errno_text(errno));
   });
+}
+
+struct AtomicFileWriter::Open {
+  fs::path temporary;
+  Registration registration;
+  int fd = -1;
+  explicit Open(fs::path t) : temporary(std::move(t)), registration(temporary.string()) {}
+  ~Open() {
+    if (fd >= 0) ::close(fd);
+    ::unlink(temporary.c_str());  // a no-op once committed (renamed away)
+  }
+};
+
+AtomicFileWriter::AtomicFileWriter(const fs::path& path) : path_(path) {
+  if (path.filename().empty()) throw std::runtime_error("cannot write " + path.string() + ": no file name");
+  open_ = std::make_unique<Open>(temporary_for(path));
+  open_->fd = ::open(open_->temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (open_->fd < 0) {
+    const int error = errno;
+    open_.reset();
+    throw std::runtime_error("cannot write " + path.string() + ": " + errno_text(error));
+  }
+}
+
+AtomicFileWriter::~AtomicFileWriter() = default;
+
+void AtomicFileWriter::write(std::string_view bytes) {
+  if (!open_) throw std::runtime_error("cannot write " + path_.string() + ": already closed");
+  try {
+    write_all(open_->fd, bytes);
+  } catch (const std::exception& e) {
+    open_.reset();
+    throw std::runtime_error("cannot write " + path_.string() + ": " + e.what());
+  }
+}
+
+void AtomicFileWriter::commit() {
+  if (!open_) throw std::runtime_error("cannot write " + path_.string() + ": already closed");
+  try {
+    const int fd = std::exchange(open_->fd, -1);
+    const int synced = ::fsync(fd);
+    const int sync_error = errno;
+    if (::close(fd) != 0 && synced == 0) throw std::runtime_error(errno_text(errno));
+    if (synced != 0) throw std::runtime_error(errno_text(sync_error));
+    if (::rename(open_->temporary.c_str(), path_.c_str()) != 0) throw std::runtime_error(errno_text(errno));
+  } catch (const std::exception& e) {
+    open_.reset();
+    throw std::runtime_error("cannot write " + path_.string() + ": " + e.what());
+  }
+  open_.reset();
 }
 
 void check_writable_folder(const fs::path& dir) {

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string_view>
 
 namespace ddish::io {
@@ -28,6 +29,28 @@ void write_atomically(const std::filesystem::path& path,
 
 // `bytes` as the whole content of `path`.
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
+
+// The same guarantee for a file written piece by piece over a long run (a frame loop's per-frame
+// timings): the pieces go to the registered temporary as they come, so nothing grows in memory;
+// commit() syncs and renames it over the real name. Destroyed without commit(), or after a
+// failed write, the temporary is removed and the old file (if any) stays. Each call throws
+// std::runtime_error "cannot write NAME: REASON".
+class AtomicFileWriter {
+ public:
+  explicit AtomicFileWriter(const std::filesystem::path& path);
+  ~AtomicFileWriter();
+  AtomicFileWriter(const AtomicFileWriter&) = delete;
+  AtomicFileWriter& operator=(const AtomicFileWriter&) = delete;
+
+  void write(std::string_view bytes);
+  void commit();
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  struct Open;
+  std::filesystem::path path_;
+  std::unique_ptr<Open> open_;  // null once committed or failed
+};
 
 // Fails early, before any long work: creates `dir` (and its parents) if needed and creates and
 // removes a file in it. Throws std::runtime_error "cannot write to output folder DIR: REASON".

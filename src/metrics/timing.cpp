@@ -53,38 +53,41 @@ FrameTimings& TimingLog::last() {
   return frames_.back();
 }
 
+nlohmann::ordered_json frame_json(const FrameTimings& f) {
+  nlohmann::ordered_json stages = nlohmann::ordered_json::object();
+  for (const StageTime& s : f.stages) stages[s.name] = s.ms;
+  return {{"frame", f.frame}, {"stages_ms", stages}, {"total_ms", f.total_ms()}};
+}
+
+void StageSummary::add(const FrameTimings& f) {
+  for (const StageTime& s : f.stages) {
+    auto it = std::find_if(stages_.begin(), stages_.end(), [&](const Stage& x) { return x.name == s.name; });
+    if (it == stages_.end()) {
+      stages_.push_back({s.name, 1, s.ms, s.ms, s.ms});
+    } else {
+      it->frames += 1;
+      it->sum += s.ms;
+      it->min = std::min(it->min, s.ms);
+      it->max = std::max(it->max, s.ms);
+    }
+  }
+}
+
+nlohmann::ordered_json StageSummary::to_json() const {
+  nlohmann::ordered_json sum = nlohmann::ordered_json::object();
+  for (const Stage& s : stages_)
+    sum[s.name] = {{"frames", s.frames}, {"mean_ms", s.sum / s.frames}, {"min_ms", s.min}, {"max_ms", s.max}};
+  return sum;
+}
+
 nlohmann::ordered_json TimingLog::to_json() const {
   nlohmann::ordered_json frames = nlohmann::ordered_json::array();
-  struct Summary {
-    std::string name;
-    int frames = 0;
-    double sum = 0.0, min = 0.0, max = 0.0;
-  };
-  std::vector<Summary> summary;  // first-seen order, like the stages themselves
+  StageSummary summary;
   for (const FrameTimings& f : frames_) {
-    nlohmann::ordered_json stages = nlohmann::ordered_json::object();
-    for (const StageTime& s : f.stages) {
-      stages[s.name] = s.ms;
-      auto it = std::find_if(summary.begin(), summary.end(),
-                             [&](const Summary& x) { return x.name == s.name; });
-      if (it == summary.end()) {
-        summary.push_back({s.name, 1, s.ms, s.ms, s.ms});
-      } else {
-        it->frames += 1;
-        it->sum += s.ms;
-        it->min = std::min(it->min, s.ms);
-        it->max = std::max(it->max, s.ms);
-      }
-    }
-    frames.push_back({{"frame", f.frame}, {"stages_ms", stages}, {"total_ms", f.total_ms()}});
+    frames.push_back(frame_json(f));
+    summary.add(f);
   }
-  nlohmann::ordered_json sum = nlohmann::ordered_json::object();
-  for (const Summary& s : summary)
-    sum[s.name] = {{"frames", s.frames},
-                   {"mean_ms", s.sum / s.frames},
-                   {"min_ms", s.min},
-                   {"max_ms", s.max}};
-  return {{"frames", frames}, {"summary", sum}};
+  return {{"frames", frames}, {"summary", summary.to_json()}};
 }
 
 TimingLog TimingLog::from_json(const nlohmann::ordered_json& doc) {

@@ -54,6 +54,25 @@ class StageTimer {
   bool stopped_ = false;
 };
 
+// One frame as {"frame", "stages_ms", "total_ms"}, the element of the "frames" array.
+nlohmann::ordered_json frame_json(const FrameTimings& frame);
+
+// The "summary" of frames seen one at a time (a log written as it goes keeps no frames):
+// per stage, in first-seen order, the frames it ran in and its mean, min and max.
+class StageSummary {
+ public:
+  void add(const FrameTimings& frame);
+  nlohmann::ordered_json to_json() const;
+
+ private:
+  struct Stage {
+    std::string name;
+    int frames = 0;
+    double sum = 0.0, min = 0.0, max = 0.0;
+  };
+  std::vector<Stage> stages_;
+};
+
 class TimingLog {
  public:
   void add(FrameTimings frame) { frames_.push_back(std::move(frame)); }

@@ -68,6 +68,23 @@ TEST_F(Resources, HostVisibleBufferRoundTrip) {
   EXPECT_EQ(moved.read<float>(3, 16), values);
 }
 
+// The live tally a soak run watches: one allocation per buffer, moved with it, freed with it.
+TEST_F(Resources, LiveDeviceMemoryCountsEveryAllocationOnce) {
+  const MemoryTally before = live_device_memory();
+  {
+    Buffer a(device(), 4096, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::upload);
+    const MemoryTally one = live_device_memory();
+    EXPECT_EQ(one.allocations, before.allocations + 1);
+    EXPECT_EQ(one.bytes, before.bytes + static_cast<std::int64_t>(a.memory().size()));
+    Buffer b = std::move(a);
+    EXPECT_EQ(live_device_memory().allocations, one.allocations);  // moved, not copied
+    b = Buffer(device(), 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::upload);
+    EXPECT_EQ(live_device_memory().allocations, one.allocations);  // the old one was freed
+  }
+  EXPECT_EQ(live_device_memory().allocations, before.allocations);
+  EXPECT_EQ(live_device_memory().bytes, before.bytes);
+}
+
 TEST_F(Resources, EmptyBufferIsAnError) {
   EXPECT_THROW(Buffer(device(), 0, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::upload),
                GpuError);

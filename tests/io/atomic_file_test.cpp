@@ -152,3 +152,45 @@ TEST_F(AtomicFile, RemovePartialFilesRemovesTheTemporariesInProgress) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(AtomicFile, AWriterInPiecesAppearsOnlyOnCommit) {
+  io::write_file_atomically(dir_ / "t.json", "old");
+  {
+    io::AtomicFileWriter w(dir_ / "t.json");
+    w.write("{\"frames\": [");
+    for (int k = 0; k < 1000; ++k) {
+      if (k > 0) w.write(",");
+      w.write(std::to_string(k));
+    }
+    // In progress: the real name still holds the old file, and one hidden temporary sits beside it.
+    EXPECT_EQ(slurp(dir_ / "t.json"), "old");
+    EXPECT_EQ(names_in(dir_).size(), 2u);
+    w.write("]}");
+    w.commit();
+    EXPECT_THROW(w.write("late"), std::runtime_error);
+  }
+  const std::string text = slurp(dir_ / "t.json");
+  EXPECT_EQ(text.substr(0, 15), "{\"frames\": [0,1");
+  EXPECT_EQ(text.substr(text.size() - 6), ",999]}");
+  EXPECT_EQ(names_in(dir_), std::vector<std::string>{"t.json"});
+}
+
+TEST_F(AtomicFile, AWriterDestroyedWithoutCommitLeavesTheOldFileAlone) {
+  io::write_file_atomically(dir_ / "t.json", "old");
+  {
+    io::AtomicFileWriter w(dir_ / "t.json");
+    w.write("half a docu");
+  }
+  EXPECT_EQ(slurp(dir_ / "t.json"), "old");
+  EXPECT_EQ(names_in(dir_), std::vector<std::string>{"t.json"});
+  try {
+    io::AtomicFileWriter w(dir_ / "missing" / "t.json");
+    FAIL() << "a writer into a missing folder was made";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
