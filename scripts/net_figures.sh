@@ -7,8 +7,9 @@
 #   3. probe age at a client (server trace end -> upload, ms): median and 95th percentile;
 #   4. the server's work per tick (update + publish + requests, not idling) against 1, 2, 4 and 8
 #      clients (64x64 views each, visibility schedule), median over the ticks after the first 30;
-#   5. reconnection times from the 4-client x 10-restart fault test (tests/app), per client.
-# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24039; ~3 minutes.
+#   5. reconnection times from the 4-client x 10-restart fault test (tests/app), per client;
+#   6. what a relay forwards (bench/net_relay: bricks at 30 ticks/s to 1 and 4 clients).
+# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24039 and 24100-24107; ~3 minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build}
@@ -33,9 +34,11 @@ for enc in fp16 shared-exponent compact; do
     psnr=$("$B/ddish" compare "$D/view/frame_0000.exr" "$D/render/frame_0004.exr" | awk '/psnr/ {print $2}')
     python3 - "$D/serve.json" "$enc" "${z:+yes}" "$psnr" <<'PY'
 import json, sys
-t = json.load(open(sys.argv[1]))["ticks"]
+d = json.load(open(sys.argv[1]))
+t = d["ticks"]
 first = next(x for x in t if x["probes_sent"] > 0)
-print(f'{sys.argv[2]},{sys.argv[3] or "no"},{first["bytes"]},{first["probes_sent"]},{(first["bytes"] - 88) / first["probes_sent"]:.2f},{sys.argv[4]}')
+headers = 88 * d["summary"]["bricks"]  # one frame per brick (4x4x4 probes) per tick
+print(f'{sys.argv[2]},{sys.argv[3] or "no"},{first["bytes"]},{first["probes_sent"]},{(first["bytes"] - headers) / first["probes_sent"]:.2f},{sys.argv[4]}')
 PY
     port=$((port + 2))
   done
@@ -104,3 +107,6 @@ for name, c in json.load(open(sys.argv[1])).items():
     r = c["reconnect_s"]
     print(f'{name},{len(r)},{statistics.median(r):.3f},{max(r):.3f}')
 PY
+
+echo
+"$B/bench/net_relay" --grid 16 --fps 30 --seconds 3 --clients 1,4 --port 24100

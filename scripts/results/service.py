@@ -1,7 +1,7 @@
 """Section 5: the probe service (`ddish serve` / `ddish view` on loopback), from one run of
 scripts/net_figures.sh: bytes per probe per encoding with the PSNR loss, bytes per second of a
 static and an animated scene, probe age at a client, the server's work against 1-8 clients and
-the reconnection times of the 4-client x 10-restart fault test."""
+the reconnection times of the 4-client x 10-restart fault test, and what a relay forwards."""
 
 import csv
 import io
@@ -27,6 +27,11 @@ BLOCKS = [
     ("service_reconnect.csv", "Reconnection after a server restart",
      "From the 4-client × 10-restart fault test (`tests/app/serve_restart_cli_test.cpp`): the new "
      "server's bind to each client's snapshot, per client display."),
+    ("service_relay.csv", "What a relay forwards",
+     "`build/bench/net_relay`: one server publishing compact bricks (4×4×4 probes, every probe "
+     "changed every tick) at 30 ticks/s through a `ddish relay` forwarder to probe clients that "
+     "decode every frame, all in one process on this machine: a lower bound on the relay's rate "
+     "(docs/scaling.md uses it)."),
 ]
 
 

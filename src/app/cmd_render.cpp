@@ -24,14 +24,17 @@
 // last one, --timings has the frames done, and the exit code is 128 + the signal; every file is
 // written whole (io/atomic_file.h), and the output folders are tried before the scene loads.
 //
-// ddish view SCENE --connect tcp://HOST:PORT [--probes FILE] [--wait-ms MS] [--frame-wait-ms MS]
+// ddish view SCENE --connect tcp://HOST:PORT[,...] [--relay tcp://HOST:PORT] [--probes FILE]
+//                  [--wait-ms MS] [--frame-wait-ms MS]
 //                  [--stale-ms MS] [--curve-server-key FILE --curve-secret FILE]
 //                  [every option of render but the probe update's and the schedule's]
 // is the same loop with the probe stream's client as its probe source (remote_probes.h): the
 // probes come from a `ddish serve` of the same scene and probe grid (checked by the scene
 // identity, scene_identity.h), the views go upstream to its scheduler. Without a server at start
 // it renders with --probes FILE (a volume of `ddish probes --out`), else with direct light only,
-// and says which; a lost server leaves the last probes in place. With --curve-server-key (the
+// and says which; a lost server leaves the last probes in place. Several --connect servers
+// split the probe bricks between them (serve --bricks I/N); the client subscribes only to the
+// bricks its views need, through one `ddish relay` with --relay. With --curve-server-key (the
 // server's .pub) and --curve-secret (this client's .key) it speaks CurveZMQ.
 #include <sys/resource.h>
 
@@ -128,6 +131,7 @@ struct RenderArgs {
   int frame_wait_ms = 0;  // later frames' wait for the server's next frame
   std::string curve_server_key;  // the server's .pub
   std::string curve_secret;      // this client's .key
+  std::string relay;             // --relay: the frames through a ddish relay
   WarmupOptions warmup;  // render: on by default; view: its probes come from the server
   const char* tag() const { return connect.empty() ? "render" : "view"; }
 };
@@ -151,7 +155,8 @@ void check(const RenderArgs& a) {
                                 "WAYLAND_DISPLAY is set; without --window ddish renders to files");
   if (a.wait_ms < 0 || a.frame_wait_ms < 0 || a.stale_ms < 1)
     throw std::invalid_argument("--wait-ms and --frame-wait-ms must be >= 0, --stale-ms >= 1");
-  if (!a.connect.empty()) net::parse_endpoint(a.connect);  // throws with the reason
+  if (!a.connect.empty()) net::parse_endpoint_list(a.connect);  // throws with the reason
+  if (!a.relay.empty()) net::parse_endpoint(a.relay);
   if (a.curve_server_key.empty() != a.curve_secret.empty())
     throw std::invalid_argument("--curve-server-key and --curve-secret go together");
   if (!(a.fps > 0.0)) throw std::invalid_argument("--fps must be positive");
@@ -230,7 +235,8 @@ StreamArgs stream_args(const RenderArgs& a) {
           .stale_ms = a.stale_ms,
           .frame_wait_ms = a.frame_wait_ms,
           .curve_server_key = a.curve_server_key,
-          .curve_secret = a.curve_secret};
+          .curve_secret = a.curve_secret,
+          .relay = a.relay};
 }
 
 // Everything that holds Vulkan objects lives in here, so that by the time it returns the device
@@ -547,8 +553,12 @@ Action make_view(CLI::App& root) {
   CLI::App* cmd = root.add_subcommand(
       "view", "ddish render with the probes of a ddish serve: views rasterized, probes streamed");
   add_frame_options(cmd, *a);
-  cmd->add_option("--connect", a->connect, "the probe server, tcp://HOST:PORT (PORT+1 is its request socket)")
+  cmd->add_option("--connect", a->connect,
+                  "the probe server, tcp://HOST:PORT (PORT+1 is its request socket); several servers "
+                  "of one scene (serve --bricks I/N), comma-separated")
       ->required();
+  cmd->add_option("--relay", a->relay, "take the probe frames through this ddish relay (tcp://HOST:PORT); "
+                  "snapshots and views still go to each --connect server");
   cmd->add_option("--probes", a->baked,
                   "baked probes (ddish probes --out) to render with until the server answers")
       ->check(CLI::ExistingFile);

@@ -1,7 +1,7 @@
 // ddish serve SCENE [--bind tcp://127.0.0.1:PORT] [--insecure] [--fps F] [--frames N]
 //                   [--seconds S] [--time T] [--encoding fp16|shared-exponent|compact] [--zstd]
 //                   [--delta-threshold R] [--delta-floor A] [--client-timeout-ms MS]
-//                   [--client-budget-ms MS] [--curve-secret FILE --allow-keys DIR]
+//                   [--client-budget-ms MS] [--bricks I/N] [--curve-secret FILE --allow-keys DIR]
 //                   [--timings FILE.json] [probe options] [schedule options]
 //
 // The probe server: the frame loop's in-process probe source (probe_source.h) with the probe
@@ -16,6 +16,10 @@
 // instead makes N updates whatever the clients, then serves their result. --seconds S stops it
 // after S seconds, SIGINT / SIGTERM at once; either way --timings is written (per tick: whether
 // it updated, probe ms, probes traced / sent / deactivated / held back, bytes, clients).
+// The grid is cut into bricks of 4x4x4 probes (net/bricks.h), each published as a stream of its
+// own under its topic; --bricks I/N makes this server own only share I of N (brick b when
+// b mod N == I): it traces, publishes and answers snapshots for those alone, so N servers with
+// the same scene and grid and shares 0/N .. N-1/N serve the whole volume between them.
 // It binds loopback unless told otherwise; a non-loopback --bind needs keys or --insecure. With
 // --curve-secret (the server's .key of `ddish keys`) and --allow-keys (a folder of clients' .pub
 // files) both sockets speak CurveZMQ and a ZAP handler refuses every client key not listed.
@@ -43,6 +47,7 @@
 #include "app/scene_identity.h"
 #include "app/schedule_options.h"
 #include "net/curve_keys.h"
+#include "net/bricks.h"
 #include "net/endpoint.h"
 #include "net/probe_server.h"
 #include "net/published_probes.h"
@@ -79,6 +84,7 @@ struct ServeArgs {
   std::string timings;
   std::string curve_secret;
   std::string allow_keys;
+  std::string bricks = "0/1";
 };
 
 void check(const ServeArgs& a) {
@@ -95,6 +101,7 @@ void check(const ServeArgs& a) {
     throw std::invalid_argument("--client-budget-ms must be a finite number >= 0");
   if (a.curve_secret.empty() != a.allow_keys.empty())
     throw std::invalid_argument("--curve-secret and --allow-keys go together");
+  net::parse_brick_share(a.bricks);
   const net::Endpoint e = net::parse_endpoint(a.bind);
   if (!e.loopback() && !a.insecure && a.curve_secret.empty())
     throw std::invalid_argument("--bind " + a.bind +
@@ -114,7 +121,7 @@ struct TickRecord {
 };
 
 void write_timings(const std::string& path, const std::vector<TickRecord>& ticks,
-                   const net::ProbeServer& server, double seconds) {
+                   const net::ProbeServer& server, double seconds, std::size_t bricks) {
   nlohmann::ordered_json doc;
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   std::uint64_t updates = 0;
@@ -138,6 +145,7 @@ void write_timings(const std::string& path, const std::vector<TickRecord>& ticks
   doc["summary"] = {{"ticks", ticks.size()},
                     {"updates", updates},
                     {"seconds", seconds},
+                    {"bricks", bricks},  // owned: one frame (88-byte header) each per tick
                     {"bytes_published", server.bytes_published()},
                     {"bytes_per_second", seconds > 0.0 ? double(server.bytes_published()) / seconds : 0.0},
                     {"snapshots_sent", server.snapshots_sent()},
@@ -177,7 +185,23 @@ int run_serve(const ServeArgs& a) {
   so.zstd = a.zstd;
   so.threshold = a.threshold;
   so.floor = a.floor;
-  net::PublishedProbes published(placement.grid, a.probe.sh_order, identity, stream, so);
+  // The bricks of this server's share: one stream each. The others' probes are inactive here,
+  // so the scheduler never plans them.
+  const net::BrickShare share = net::parse_brick_share(a.bricks);
+  const net::BrickLayout layout(placement.grid);
+  std::vector<std::uint32_t> owned;
+  std::vector<int> stream_of(layout.brick_count(), -1);
+  std::vector<net::PublishedProbes> published;
+  for (std::uint32_t b = 0; b < layout.brick_count(); ++b) {
+    std::vector<std::uint32_t> probes = layout.probes(b);
+    if (!share.owns(b)) {
+      for (std::uint32_t i : probes) volume.deactivate(i, false);
+      continue;
+    }
+    stream_of[b] = int(owned.size());
+    owned.push_back(b);
+    published.emplace_back(placement.grid, a.probe.sh_order, identity, stream, so, std::move(probes));
+  }
   std::optional<net::CurveServerKeys> curve;
   if (!a.curve_secret.empty())
     curve = net::CurveServerKeys{net::read_secret_key(a.curve_secret).secret_z85,
@@ -185,7 +209,8 @@ int run_serve(const ServeArgs& a) {
   net::ProbeServer server({.bind = a.bind,
                            .client_timeout_ms = a.client_timeout_ms,
                            .log = [](const std::string& line) { std::fprintf(stderr, "serve: %s\n", line.c_str()); },
-                           .curve = curve});
+                           .curve = curve,
+                           .send_hwm = int(std::max<std::size_t>(64, 8 * owned.size()))});
   if (curve)
     std::fprintf(stderr, "serve: CurveZMQ, %zu client keys allowed (%s)\n", curve->allowed_z85.size(),
                  a.allow_keys.c_str());
@@ -193,11 +218,12 @@ int run_serve(const ServeArgs& a) {
   const auto& g = placement.grid;
   std::fprintf(stderr,
                "serve: %s on %s (requests %s), scene identity %016llx, stream %016llx; probes %dx%dx%d "
-               "(%s), L%d, %s%s, delta threshold %g (floor %g); %s\n",
+               "(%s), L%d, %s%s, delta threshold %g (floor %g); bricks %s: %zu of %u; %s\n",
                s.path.c_str(), endpoint.publisher().c_str(), endpoint.requests().c_str(),
                static_cast<unsigned long long>(identity), static_cast<unsigned long long>(stream),
                g.counts().x, g.counts().y, g.counts().z, placement.how.c_str(), a.probe.sh_order,
-               a.encoding.c_str(), a.zstd ? " + zstd" : "", a.threshold, a.floor,
+               a.encoding.c_str(), a.zstd ? " + zstd" : "", a.threshold, a.floor, a.bricks.c_str(),
+               owned.size(), layout.brick_count(),
                a.frames > 0 ? fmt::format("{} updates, then serving them", a.frames).c_str()
                             : "updating while clients are connected");
   std::fflush(stderr);
@@ -210,7 +236,10 @@ int run_serve(const ServeArgs& a) {
   std::int64_t last_update_end_us = net::steady_now_us();
   double scene_time = a.time;
   int updates = 0;
-  const auto snapshot = [&] { return published.snapshot(); };
+  const auto snapshot = [&](std::uint32_t brick) {
+    return brick < stream_of.size() && stream_of[brick] >= 0 ? published[std::size_t(stream_of[brick])].snapshot()
+                                                            : std::vector<std::uint8_t>{};
+  };
   std::uint64_t ticks_done = 0;
   for (std::uint64_t tick = 1; !g_stop; ++tick) {
     const auto tick_start = std::chrono::steady_clock::now();
@@ -241,7 +270,15 @@ int run_serve(const ServeArgs& a) {
       rec.traced = counts.probes_traced;
       ++updates;
     }
-    server.publish(published.publish(volume, tick, last_update_end_us, scene_time, &rec.published));
+    for (std::size_t k = 0; k < owned.size(); ++k) {
+      net::PublishStats stats;
+      server.publish(owned[k], published[k].publish(volume, tick, last_update_end_us, scene_time, &stats));
+      rec.published.sent += stats.sent;
+      rec.published.deactivated += stats.deactivated;
+      rec.published.held_back += stats.held_back;
+      rec.published.saturated += stats.saturated;
+      rec.published.bytes += stats.bytes;
+    }
     const double used_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tick_start).count();
     const double request_ms = server.serve_requests(int(std::max(0.0, period.count() - used_ms)), snapshot);
     rec.tick_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tick_start).count();
@@ -258,7 +295,7 @@ int run_serve(const ServeArgs& a) {
                static_cast<unsigned long long>(ticks_done), updates, static_cast<unsigned long long>(server.bytes_published()),
                static_cast<unsigned long long>(server.snapshots_sent()));
   if (!a.timings.empty()) {
-    write_timings(a.timings, ticks, server, seconds);
+    write_timings(a.timings, ticks, server, seconds, owned.size());
     std::printf("wrote %s\n", a.timings.c_str());
   }
   return 0;
@@ -292,6 +329,10 @@ Action make_serve(CLI::App& root) {
   cmd->add_option("--client-budget-ms", a->client_budget_ms,
                   "probe-update budget per connected client (visibility schedule): the tick's budget is MS x "
                   "clients, at most --budget-ms; 0: --budget-ms alone")
+      ->capture_default_str();
+  cmd->add_option("--bricks", a->bricks,
+                  "serve share I of N of the probe bricks (4x4x4 probes each; brick b when b mod N == I); "
+                  "N servers of the same scene and grid serve the whole volume")
       ->capture_default_str();
   cmd->add_option("--timings", a->timings, "write a per-tick record as JSON here");
   cmd->add_option("--curve-secret", a->curve_secret, "the server's secret key (ddish keys): CurveZMQ on")

@@ -74,7 +74,7 @@ void check(const XrArgs& a) {
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
   if (a.frames < 0) throw std::invalid_argument("--frames must be >= 0 (0: until the runtime ends the session)");
-  if (!a.stream.connect.empty()) net::parse_endpoint(a.stream.connect);
+  if (!a.stream.connect.empty()) net::parse_endpoint_list(a.stream.connect);
   if (a.stream.curve_server_key.empty() != a.stream.curve_secret.empty())
     throw std::invalid_argument("--curve-server-key and --curve-secret go together");
   if (a.msaa != 0 && a.msaa != 1 && a.msaa != 2 && a.msaa != 4 && a.msaa != 8 && a.msaa != 16)

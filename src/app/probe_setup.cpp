@@ -54,6 +54,7 @@ std::unique_ptr<ProbeSource> make_probe_source(InProcessParts* local, const Prob
   net::ClientOptions co;
   co.connect = stream.connect;
   co.stale_ms = stream.stale_ms;
+  co.relay = stream.relay;
   const std::string prefix = tag;
   co.log = [prefix](const std::string& line) { std::fprintf(stderr, "%s: %s\n", prefix.c_str(), line.c_str()); };
   if (!stream.curve_secret.empty()) {

@@ -21,13 +21,14 @@ namespace ddish::app {
 
 // `--connect` and its companions (ddish view, ddish xr --connect).
 struct StreamArgs {
-  std::string connect;   // empty: in-process probes
+  std::string connect;   // empty: in-process probes; several servers: comma-separated
   std::string baked;     // --probes FILE: the probes until a server answers
   int wait_ms = 2000;    // frame 0's wait for the server's snapshot
   int stale_ms = 1000;   // no message for this long while connected: the server is slow
   int frame_wait_ms = 0;  // later frames' wait for the server's next frame
   std::string curve_server_key;  // the server's .pub
   std::string curve_secret;      // this client's .key
+  std::string relay;             // the frames through a ddish relay; empty: from each server
 };
 
 // The in-process probe half: path tracer, probe tracer, scheduler.

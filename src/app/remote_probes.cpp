@@ -16,7 +16,9 @@ ProbeStep RemoteProbes::update(const std::vector<scene::View>& views, bool enabl
   if (enabled) {
     metrics::StageTimer timer(timings, "probe_receive");
     client_.send_views(views);
-    const net::ClientPoll poll = client_.poll(first_ ? first_wait_ms_ : frame_wait_ms_);
+    // The first frame waits for every needed brick (the snapshots of every server), later ones
+    // for the next frame that brings probes.
+    const net::ClientPoll poll = client_.poll(first_ ? first_wait_ms_ : frame_wait_ms_, first_);
     step.changed = poll.changed;
     stream.bytes_received = poll.bytes;
     stream.frames_applied = poll.frames_applied;

@@ -1,7 +1,8 @@
 // The remote probe source of the frame loop (`ddish view`): the probe stream's client
 // (net/probe_client.h). Each frame it sends the frame's views upstream, takes what the server
 // published since the last frame, and hands the probes that changed to the upload. Frame 0
-// waits up to `first_wait_ms` for the server's snapshot; without one the volume keeps what it
+// waits up to `first_wait_ms` for the server's snapshot (every server's, for the bricks the views
+// need); without one the volume keeps what it
 // was made with (baked probes, or nothing: direct light only) and later frames take the
 // snapshot whenever the server appears. Every later frame waits up to `frame_wait_ms` for the
 // server's next frame (0: takes what has arrived), which paces a client to its server's ticks. A lost server leaves the probes as they were.

@@ -31,4 +31,20 @@ Endpoint parse_endpoint(const std::string& address) {
   return e;
 }
 
+std::vector<Endpoint> parse_endpoint_list(const std::string& addresses) {
+  std::vector<Endpoint> out;
+  std::size_t from = 0;
+  while (true) {
+    const std::size_t comma = addresses.find(',', from);
+    const Endpoint e = parse_endpoint(addresses.substr(from, comma == std::string::npos ? std::string::npos : comma - from));
+    for (const Endpoint& seen : out)
+      if (seen.publisher() == e.publisher())
+        throw std::invalid_argument("address '" + e.publisher() + "' is given twice");
+    out.push_back(e);
+    if (comma == std::string::npos) break;
+    from = comma + 1;
+  }
+  return out;
+}
+
 }  // namespace ddish::net

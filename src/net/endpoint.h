@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace ddish::net {
 
@@ -17,5 +18,9 @@ struct Endpoint {
 // Parses tcp://HOST:PORT (PORT 1..65534, HOST a name, an IPv4 address or [IPv6]); throws
 // std::invalid_argument with the reason otherwise.
 Endpoint parse_endpoint(const std::string& address);
+
+// Several servers, one address each, separated by commas (`view --connect A,B`); throws as
+// parse_endpoint does, or for an empty list or an address given twice.
+std::vector<Endpoint> parse_endpoint_list(const std::string& addresses);
 
 }  // namespace ddish::net

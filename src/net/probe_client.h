@@ -1,7 +1,11 @@
-// The client side of the probe stream (ZeroMQ): a SUB socket on the server's publisher and a
-// DEALER on its request socket (probe_server.h). It subscribes first, then asks for a snapshot,
-// and follows deltas from there (probe_mirror.h); a delta it cannot apply (a lost message, a
-// restarted server) makes it ask again. Its clocks:
+// The client side of the probe stream (ZeroMQ): a SUB socket on the servers' publishers (or on
+// one relay that forwards them, `ddish relay`) and a DEALER on each server's request socket
+// (probe_server.h). The grid is cut into bricks (bricks.h), each a stream of its own, owned by
+// one of the servers: the client subscribes to the topics of the bricks its views need (all of
+// them until it is given views), asks every server for snapshots of those it does not hold
+// (each answers for the bricks it owns), and follows each brick's deltas from there
+// (probe_mirror.h, one mirror per brick); a delta it cannot apply (a lost message, a restarted
+// server) makes it ask again for that brick. Views go to every server. Per server, its clocks:
 //   - liveness comes from the transport: the subscription's connection dropping (a closed
 //     socket, or ZMTP heartbeats unanswered for 4 x heartbeat_ms) is a lost server (one log
 //     line); the probes are kept, and snapshot requests go on until a keyframe comes back (one
@@ -39,12 +43,16 @@ struct CurveClientKeys {
 };
 
 struct ClientOptions {
-  std::string connect = "tcp://127.0.0.1:5570";
+  std::string connect = "tcp://127.0.0.1:5570";  // one server, or several: A,B,...
+  std::string relay;  // a relay's publisher (`ddish relay`) for the frames; empty: each server's
   int heartbeat_ms = 250;
   int stale_ms = 1000;          // no message for this long, connection up: say the server is slow
   int snapshot_retry_ms = 250;  // between snapshot requests while unsynced
   std::function<void(const std::string&)> log;
   std::optional<CurveClientKeys> curve;  // none: plaintext
+  // The views known at start: the subscriptions from the first connection on are the bricks
+  // they need. None: every brick, until send_views.
+  std::vector<scene::View> views;
 };
 
 struct ClientPoll {
@@ -63,13 +71,21 @@ class ProbeClient {
   ProbeClient& operator=(const ProbeClient&) = delete;
 
   // Takes every waiting message; waits up to wait_ms for the first one that brings probes
-  // (0: does not wait). Asks for snapshots as needed. A signal ends the wait early.
-  ClientPoll poll(int wait_ms);
+  // (0: does not wait), or with `until_synced` until every needed brick is held (a first frame:
+  // the snapshots of several servers). Asks for snapshots as needed. A signal ends the wait
+  // early.
+  ClientPoll poll(int wait_ms, bool until_synced = false);
+  // Sends the views to every server and subscribes to the bricks they need (no views: no
+  // change).
   void send_views(const std::vector<scene::View>& views);
 
-  bool synced() const;                 // holds a keyframe's state of the current server
+  bool synced() const;                 // holds every needed brick's state of its current server
   bool ever_synced() const;            // has held probes from a server
-  std::uint64_t server_frame() const;  // the frame held
+  std::uint64_t server_frame() const;  // the newest frame held
+  // The bricks subscribed to (increasing), and the probe frames received per brick, applied or
+  // not: every message the subscription delivered under its topic, and snapshot keyframes.
+  std::vector<std::uint32_t> subscribed_bricks() const;
+  std::vector<std::uint64_t> frames_per_brick() const;
   double stale_ms() const;             // since the last message (0 before the first)
   // Age of the held probes: now less the end of their probe update, in the client's clock
   // (nullopt before a clock offset is known).
@@ -81,7 +97,7 @@ class ProbeClient {
 
  private:
   struct Impl;
-  void poll_until(std::chrono::steady_clock::time_point end, ClientPoll& out);
+  void poll_until(std::chrono::steady_clock::time_point end, bool until_synced, ClientPoll& out);
   std::unique_ptr<Impl> impl_;
 };
 

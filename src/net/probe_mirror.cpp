@@ -16,8 +16,15 @@ void set_probe(probes::ProbeVolume& volume, std::uint32_t i, const glm::vec3* co
 
 }  // namespace
 
-ProbeMirror::ProbeMirror(probes::ProbeVolume& volume, std::uint64_t scene_id)
-    : volume_(volume), scene_id_(scene_id) {}
+ProbeMirror::ProbeMirror(probes::ProbeVolume& volume, std::uint64_t scene_id,
+                         std::vector<std::uint32_t> probes)
+    : volume_(volume), scene_id_(scene_id), probes_(std::move(probes)) {
+  if (probes_.empty())
+    for (std::uint32_t i = 0; i < volume_.probe_count(); ++i) probes_.push_back(i);
+  mine_.assign(volume_.probe_count(), 0);
+  for (std::uint32_t i : probes_)
+    if (i < mine_.size()) mine_[i] = 1;
+}
 
 bool ProbeMirror::matches(const FrameHeader& h) const {
   const glm::ivec3 c = volume_.grid().counts();
@@ -30,6 +37,9 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
   changed.clear();
   if (!matches(f.header)) return ApplyOutcome::kSceneMismatch;
   const std::size_t n = std::size_t(volume_.coefficient_count());
+  for (const std::vector<std::uint32_t>* list : {&f.updated, &f.deactivated})
+    for (std::uint32_t i : *list)
+      if (i >= mine_.size() || !mine_[i]) return ApplyOutcome::kOutside;
   if (f.header.kind == FrameKind::kKeyframe) {
     kept_ = 0;
     if (synced_ && f.header.stream_id == stream_ && f.header.frame <= frame_) return ApplyOutcome::kOld;
@@ -38,7 +48,7 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
     // always sent), rather than the indirect light going dark after every restart.
     const bool restarted = stream_ != 0 && f.header.stream_id != stream_;
     std::size_t next = 0;
-    for (std::uint32_t i = 0; i < volume_.probe_count(); ++i) {
+    for (std::uint32_t i : probes_) {
       if (next < f.updated.size() && f.updated[next] == i) {
         set_probe(volume_, i, f.coefficients.data() + next * n);
         ++next;

@@ -7,7 +7,7 @@
 // needed. A keyframe of another stream (a restarted server) is taken whatever its frame number,
 // and keeps the active probes the client holds that it does not carry (not traced yet by the new
 // server) until the new stream sends them; a delta of another stream is a gap. Frames of another
-// scene or grid are never applied.
+// scene or grid, or with probes outside the mirror's (another brick's), are never applied.
 #pragma once
 
 #include <cstdint>
@@ -23,12 +23,16 @@ enum class ApplyOutcome {
   kOld,            // not newer than what the mirror holds: dropped
   kGap,            // a delta from a frame the mirror does not hold: take a snapshot
   kSceneMismatch,  // another scene identity, grid or SH order: refused
+  kOutside,        // a probe outside the mirror's probes (another brick's): refused
 };
 
 class ProbeMirror {
  public:
   // `volume` (borrowed) is the client's own volume of its scene; scene_id its identity.
-  ProbeMirror(probes::ProbeVolume& volume, std::uint64_t scene_id);
+  // `probes` (increasing): the probes this mirror follows, a brick's (bricks.h), whose
+  // keyframes leave every other probe alone; empty: all of them.
+  ProbeMirror(probes::ProbeVolume& volume, std::uint64_t scene_id,
+              std::vector<std::uint32_t> probes = {});
 
   // Applies a decoded frame; `changed` receives the probes whose coefficients or flags it set
   // (increasing), for the renderer's upload.
@@ -50,6 +54,8 @@ class ProbeMirror {
  private:
   probes::ProbeVolume& volume_;
   std::uint64_t scene_id_;
+  std::vector<std::uint32_t> probes_;  // followed, increasing
+  std::vector<std::uint8_t> mine_;     // per grid probe: 1 when followed
   bool synced_ = false;
   std::uint64_t frame_ = 0;
   std::uint64_t stream_ = 0;

@@ -1,5 +1,6 @@
 #include "net/probe_server.h"
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <chrono>
@@ -10,6 +11,7 @@
 #include <zmq.hpp>
 #include <zmq_addon.hpp>
 
+#include "net/bricks.h"
 #include "net/byte_io.h"
 #include "net/endpoint.h"
 #include "net/view_message.h"
@@ -52,23 +54,37 @@ struct ProbeServer::Impl {
                ? clients.erase(it)
                : std::next(it);
   }
-  void handle(std::vector<zmq::message_t>& parts,
-              const std::function<std::vector<std::uint8_t>()>& snapshot) {
+  void handle(std::vector<zmq::message_t>& parts, const SnapshotFn& snapshot) {
     if (parts.size() < 2) return reject("no-type", "a request without a type");
     const std::string id = parts[0].to_string();
     const std::string type = parts[1].to_string();
     if (type == "SNAP") {
-      if (parts.size() != 3 || parts[2].size() != 8)
-        return reject("bad-snapshot-request", "a snapshot request without its 8-byte client time");
+      if (parts.size() != 4 || parts[2].size() != 8 || parts[3].size() % 4 != 0)
+        return reject("bad-snapshot-request",
+                      "a snapshot request without its 8-byte client time and its u32 bricks");
       std::vector<std::uint8_t> now;
       ByteWriter(now).i64(steady_now_us());
-      const std::vector<std::uint8_t> keyframe = snapshot();
-      std::array<zmq::const_buffer, 5> reply = {zmq::buffer(id), zmq::str_buffer("SNAP"),
-                                                zmq::buffer(parts[2].data(), parts[2].size()),
-                                                zmq::buffer(now), zmq::buffer(keyframe)};
+      std::vector<std::string> topics;
+      std::vector<std::vector<std::uint8_t>> keyframes;
+      ByteReader wanted({static_cast<const std::uint8_t*>(parts[3].data()), parts[3].size()});
+      for (std::size_t k = 0; k < parts[3].size() / 4; ++k) {
+        std::uint32_t brick = 0;
+        wanted.u32(brick);
+        std::vector<std::uint8_t> keyframe = snapshot(brick);
+        if (keyframe.empty()) continue;  // not this server's
+        topics.push_back(brick_topic(brick));
+        keyframes.push_back(std::move(keyframe));
+      }
+      std::vector<zmq::const_buffer> reply = {zmq::buffer(id), zmq::str_buffer("SNAP"),
+                                              zmq::buffer(parts[2].data(), parts[2].size()),
+                                              zmq::buffer(now)};
+      for (std::size_t k = 0; k < topics.size(); ++k) {
+        reply.push_back(zmq::buffer(topics[k]));
+        reply.push_back(zmq::buffer(keyframes[k]));
+      }
       if (zmq::send_multipart(requests, reply, zmq::send_flags::dontwait)) {
         ++snapshots;
-        bytes += keyframe.size();
+        for (const auto& k : keyframes) bytes += k.size();
       }
       clients[id].last_heard_us = steady_now_us();
     } else if (type == "VIEW") {
@@ -107,7 +123,7 @@ ProbeServer::ProbeServer(const ServerOptions& options) : impl_(std::make_unique<
       s->set(zmq::sockopt::zap_domain, "ddish");
     }
   }
-  impl_->publisher.set(zmq::sockopt::sndhwm, 64);
+  impl_->publisher.set(zmq::sockopt::sndhwm, std::max(1, options.send_hwm));
   impl_->requests.set(zmq::sockopt::router_mandatory, 0);
   for (auto [socket, address] : {std::pair{&impl_->publisher, e.publisher()},
                                  std::pair{&impl_->requests, e.requests()}}) {
@@ -121,17 +137,18 @@ ProbeServer::ProbeServer(const ServerOptions& options) : impl_(std::make_unique<
 
 ProbeServer::~ProbeServer() = default;
 
-void ProbeServer::publish(std::span<const std::uint8_t> frame) {
+void ProbeServer::publish(std::uint32_t brick, std::span<const std::uint8_t> frame) {
+  const std::string topic = brick_topic(brick);
   try {
-    if (impl_->publisher.send(zmq::buffer(frame.data(), frame.size()), zmq::send_flags::dontwait))
-      impl_->bytes += frame.size();
+    std::array<zmq::const_buffer, 2> parts = {zmq::buffer(topic), zmq::buffer(frame.data(), frame.size())};
+    if (zmq::send_multipart(impl_->publisher, parts, zmq::send_flags::dontwait))
+      impl_->bytes += frame.size() + topic.size();
   } catch (const zmq::error_t& e) {
     if (e.num() != EINTR) throw;  // a signal (SIGINT, SIGTERM): the caller is about to stop
   }
 }
 
-double ProbeServer::serve_requests(int timeout_ms,
-                                   const std::function<std::vector<std::uint8_t>()>& snapshot) {
+double ProbeServer::serve_requests(int timeout_ms, const SnapshotFn& snapshot) {
   const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
   double busy_ms = 0.0;
   do {

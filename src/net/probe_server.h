@@ -1,11 +1,14 @@
 // The probe server's sockets (ZeroMQ, the zguide's Clone pattern):
-//   - a PUB socket at the endpoint's publisher address sends every probe frame (one delta per
-//     tick, empty or not: the chain of base frames tells a client that it missed one);
-//   - a ROUTER socket at the request address answers snapshot requests with a keyframe of the
-//     last published frame and the server's clock, and takes each client's views.
-// Requests are multipart: ["SNAP", u64 client time µs] is answered ["SNAP", the same 8 bytes,
-// i64 server steady-clock time µs, keyframe]; ["VIEW", view message (view_message.h)] replaces
-// that client's views. A client whose last message is older than the timeout stops counting.
+//   - a PUB socket at the endpoint's publisher address sends every probe frame as two parts,
+//     [brick topic (bricks.h), frame]: one delta per owned brick per tick, empty or not (the
+//     chain of base frames tells a client that it missed one); subscribers filter by topic;
+//   - a ROUTER socket at the request address answers snapshot requests with keyframes of the
+//     last published frame of the bricks asked for that it owns and the server's clock, and
+//     takes each client's views.
+// Requests are multipart: ["SNAP", u64 client time µs, u32 bricks wanted...] is answered
+// ["SNAP", the same 8 bytes, i64 server steady-clock time µs, then topic and keyframe of each
+// wanted brick the server owns]; ["VIEW", view message (view_message.h)] replaces that client's
+// views. A client whose last message is older than the timeout stops counting.
 // ZMTP heartbeats run on every connection. Malformed requests are dropped and counted, with one
 // log line per kind.
 #pragma once
@@ -36,6 +39,9 @@ struct ServerOptions {
   int client_timeout_ms = 2000;
   std::function<void(const std::string&)> log;  // one line per event
   std::optional<CurveServerKeys> curve;          // none: plaintext
+  // Frames queued per subscriber before the publisher drops them (the subscriber then sees a gap
+  // and takes a snapshot): a few ticks of every owned brick (serve: 8 x bricks, at least 64).
+  int send_hwm = 64;
 };
 
 // Microseconds of the steady clock: the time base of server_time_us and of the client's clock.
@@ -49,19 +55,22 @@ class ProbeServer {
   ProbeServer(const ProbeServer&) = delete;
   ProbeServer& operator=(const ProbeServer&) = delete;
 
-  void publish(std::span<const std::uint8_t> frame);
+  // Publishes a frame of `brick` under its topic.
+  void publish(std::uint32_t brick, std::span<const std::uint8_t> frame);
 
+  // The keyframe of a brick for a snapshot reply; empty when the server does not own it.
+  using SnapshotFn = std::function<std::vector<std::uint8_t>(std::uint32_t brick)>;
   // Answers requests for timeout_ms (polls at least once; returns early when a signal interrupts
-  // the wait); `snapshot` makes each reply's keyframe.
+  // the wait); `snapshot` makes each reply's keyframes.
   // Returns the milliseconds spent handling requests (the rest of timeout_ms was idle).
-  double serve_requests(int timeout_ms, const std::function<std::vector<std::uint8_t>()>& snapshot);
+  double serve_requests(int timeout_ms, const SnapshotFn& snapshot);
 
   // The union of the views of the clients heard from within the timeout.
   std::vector<scene::View> views() const;
   std::size_t clients() const;
 
   std::uint64_t bytes_published() const;
-  std::uint64_t snapshots_sent() const;
+  std::uint64_t snapshots_sent() const;  // snapshot replies
   std::uint64_t malformed_requests() const;
   std::uint64_t refused_keys() const;  // CURVE handshakes the ZAP handler refused
 

@@ -7,7 +7,8 @@
 namespace ddish::net {
 
 PublishedProbes::PublishedProbes(const probes::ProbeGrid& grid, int sh_order, std::uint64_t scene_id,
-                                 std::uint64_t stream_id, const StreamOptions& options)
+                                 std::uint64_t stream_id, const StreamOptions& options,
+                                 std::vector<std::uint32_t> probes)
     : options_(options),
       coefficient_count_((sh_order + 1) * (sh_order + 1)),
       probe_bytes_(std::size_t(probe_bytes(options.encoding, sh_order))) {
@@ -20,10 +21,16 @@ PublishedProbes::PublishedProbes(const probes::ProbeGrid& grid, int sh_order, st
   header_.counts[2] = std::uint32_t(grid.counts().z);
   header_.scene_id = scene_id;
   header_.stream_id = stream_id;
-  const std::size_t probes = grid.probe_count();
-  held_.assign(probes, 0);
-  held_bytes_.assign(probes * probe_bytes_, 0);
-  source_.assign(probes * std::size_t(coefficient_count_), glm::vec3(0.0f));
+  if (probes.empty())
+    for (std::uint32_t i = 0; i < grid.probe_count(); ++i) probes.push_back(i);
+  for (std::size_t k = 0; k < probes.size(); ++k)
+    if (probes[k] >= grid.probe_count() || (k > 0 && probes[k] <= probes[k - 1]))
+      throw std::invalid_argument("PublishedProbes: probes must be increasing grid indices");
+  probes_ = std::move(probes);
+  held_.assign(probes_.size(), 0);
+  held_bytes_.assign(probes_.size() * probe_bytes_, 0);
+  source_.assign(probes_.size() * std::size_t(coefficient_count_), glm::vec3(0.0f));
+  grid_probes_ = grid.probe_count();
 }
 
 std::uint32_t PublishedProbes::held_probes() const {
@@ -33,7 +40,7 @@ std::uint32_t PublishedProbes::held_probes() const {
 std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& volume,
                                                    std::uint64_t frame, std::int64_t server_time_us,
                                                    double scene_time, PublishStats* stats) {
-  if (volume.probe_count() != held_.size() || volume.sh_order() != header_.sh_order)
+  if (volume.probe_count() != grid_probes_ || volume.sh_order() != header_.sh_order)
     throw std::invalid_argument("PublishedProbes::publish: another grid or SH order");
   if (frame <= header_.frame)
     throw std::invalid_argument("PublishedProbes::publish: frames must increase");
@@ -41,11 +48,12 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
   std::vector<std::uint32_t> updated, deactivated;
   std::vector<std::uint8_t> flags, bytes;
   const std::size_t n = std::size_t(coefficient_count_);
-  for (std::uint32_t i = 0; i < volume.probe_count(); ++i) {
+  for (std::size_t k = 0; k < probes_.size(); ++k) {
+    const std::uint32_t i = probes_[k];
     const probes::ProbeState& state = volume.state(i);
     if (!state.active()) {
-      if (held_[i]) {
-        held_[i] = 0;
+      if (held_[k]) {
+        held_[k] = 0;
         deactivated.push_back(i);
         flags.push_back(std::uint8_t(kWireFlagInactive |
                                      (state.inside_geometry() ? kWireFlagInsideGeometry : 0)));
@@ -54,8 +62,8 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
     }
     if (state.updates == 0) continue;  // nothing to say yet: it stays out of the interpolation
     std::span<const glm::vec3> now = volume.coefficients(i);
-    glm::vec3* src = source_.data() + std::size_t(i) * n;
-    if (held_[i]) {
+    glm::vec3* src = source_.data() + k * n;
+    if (held_[k]) {
       float change = 0.0f;
       for (std::size_t j = 0; j < n; ++j) {
         const glm::vec3 d = glm::abs(now[j] - src[j]);
@@ -68,11 +76,11 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
         continue;
       }
     }
-    std::uint8_t* out = held_bytes_.data() + std::size_t(i) * probe_bytes_;
+    std::uint8_t* out = held_bytes_.data() + k * probe_bytes_;
     if (!encode_probe(header_.encoding, header_.sh_order, now, std::span(out, probe_bytes_)))
       ++s.saturated;
     std::copy(now.begin(), now.end(), src);
-    held_[i] = 1;
+    held_[k] = 1;
     updated.push_back(i);
     bytes.insert(bytes.end(), out, out + probe_bytes_);
   }
@@ -97,10 +105,10 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
 std::vector<std::uint8_t> PublishedProbes::snapshot() const {
   std::vector<std::uint32_t> updated;
   std::vector<std::uint8_t> bytes;
-  for (std::uint32_t i = 0; i < held_.size(); ++i) {
-    if (!held_[i]) continue;
-    updated.push_back(i);
-    const std::uint8_t* b = held_bytes_.data() + std::size_t(i) * probe_bytes_;
+  for (std::size_t k = 0; k < held_.size(); ++k) {
+    if (!held_[k]) continue;
+    updated.push_back(probes_[k]);
+    const std::uint8_t* b = held_bytes_.data() + k * probe_bytes_;
     bytes.insert(bytes.end(), b, b + probe_bytes_);
   }
   FrameHeader h = header_;

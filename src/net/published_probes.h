@@ -8,6 +8,8 @@
 // from the server's by at most that amount plus the encoding's error (probe_encoding.h).
 // threshold 0 and floor 0: every probe whose coefficients changed at all is sent.
 //
+// A stream may carry a subset of the grid's probes (a brick, bricks.h): then its frames list
+// only those, and its keyframes say nothing of the others.
 // Probes that were never sent or became inactive are not held: a keyframe lists only the held
 // probes (the others are inactive for the client), and a delta announces a probe that became
 // inactive once, with its flags, never its coefficients. The snapshot (a keyframe of the last
@@ -41,9 +43,11 @@ struct PublishStats {
 
 class PublishedProbes {
  public:
-  // stream_id: this server run's (probe_frame.h), drawn at random at start.
+  // stream_id: this server run's (probe_frame.h), drawn at random at start. `probes`
+  // (increasing): the only probes this stream carries, a brick's (bricks.h); empty: all of them.
   PublishedProbes(const probes::ProbeGrid& grid, int sh_order, std::uint64_t scene_id,
-                  std::uint64_t stream_id, const StreamOptions& options);
+                  std::uint64_t stream_id, const StreamOptions& options,
+                  std::vector<std::uint32_t> probes = {});
 
   // Frame `frame` (> the last published one): the delta from the last published frame to
   // `volume` (same grid and order). server_time_us: when its probe update ended.
@@ -64,6 +68,8 @@ class PublishedProbes {
   StreamOptions options_;
   int coefficient_count_;
   std::size_t probe_bytes_;
+  std::uint32_t grid_probes_ = 0;
+  std::vector<std::uint32_t> probes_;     // the probes carried (grid indices, increasing)
   std::vector<std::uint8_t> held_;        // per probe: 1 while subscribers hold it
   std::vector<std::uint8_t> held_bytes_;  // per probe: the bytes last sent
   std::vector<glm::vec3> source_;         // per probe: the coefficients they were sent from

@@ -144,8 +144,8 @@ std::string capture(int test, bool curve, bool& served) {
   std::uint64_t frame = 0;
   for (int turn = 0; turn < 200 && !(client.synced() && client.server_frame() >= 5); ++turn) {
     for (glm::vec3& c : volume.coefficients(std::uint32_t(turn) % volume.probe_count())) c *= 1.1f;
-    server.publish(published.publish(volume, ++frame, 0, 0.0));
-    server.serve_requests(5, [&] { return published.snapshot(); });
+    server.publish(0, published.publish(volume, ++frame, 0, 0.0));
+    server.serve_requests(5, [&](std::uint32_t) { return published.snapshot(); });
     client.send_views({scene::look_at_view({0, 1, 3}, {0, 1, 0}, {0, 1, 0}, 1.0f, 32, 32)});
     client.poll(5);
   }

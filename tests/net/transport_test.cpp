@@ -61,8 +61,8 @@ struct Server {
       volume.state(i).flags = 0;
       volume.state(i).updates += 1;
     }
-    server.publish(published.publish(volume, ++frame, steady_now_us(), 0.0));
-    server.serve_requests(ms, [&] { return published.snapshot(); });
+    server.publish(0, published.publish(volume, ++frame, steady_now_us(), 0.0));
+    server.serve_requests(ms, [&](std::uint32_t) { return published.snapshot(); });
   }
 };
 
@@ -93,7 +93,7 @@ TEST(Transport, LateJoinerHasEveryProbeInItsFirstFrame) {
   ProbeClient client(client_options(address(0)), mine, kScene);
   ClientPoll poll;
   for (int turn = 0; turn < 200 && !client.synced(); ++turn) {
-    s.server.serve_requests(5, [&] { return s.published.snapshot(); });
+    s.server.serve_requests(5, [&](std::uint32_t) { return s.published.snapshot(); });
     poll = client.poll(5);
   }
   ASSERT_TRUE(client.synced());
@@ -126,10 +126,10 @@ TEST(Transport, MalformedMessagesAreDroppedAndCounted) {
   std::vector<std::uint8_t> bad_magic = good, truncated(good.begin(), good.begin() + 40);
   bad_magic[0] = 'Z';
   for (int k = 0; k < 3; ++k) {
-    s.server.publish(bad_magic);
-    s.server.publish(truncated);
+    s.server.publish(0, bad_magic);
+    s.server.publish(0, truncated);
   }
-  s.server.publish(good);
+  s.server.publish(0, good);
   for (int turn = 0; turn < 50 && client.server_frame() != s.frame; ++turn) client.poll(10);
   EXPECT_EQ(client.server_frame(), s.frame);  // the good one still applies
   EXPECT_EQ(client.rejected(RejectKind::kBadMagic), 3u);
