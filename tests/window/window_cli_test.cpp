@@ -4,10 +4,11 @@
 // the window's image is the renderer's display bytes (atlas) or the GPU interleave (lenticular,
 // equal bit for bit to the CPU's: test_display's GpuCompositorTest), copied 1:1 (nearest blit)
 // into a UNORM swapchain, and Xvfb's 24-bit visual keeps 8 bits a channel. Single view, stereo
-// pair and lenticular panel image (a Portrait-like and a 16-inch-like calibration on small panels,
-// the latter with flipImageX, flipImageY and flipSubp). The single view keeps the status text on
-// and leaves its box out of the comparison, reading the box back glyph by glyph instead; the
-// others run with --no-status. Without a display server --window is one line and exit 2.
+// pair and lenticular panel image (a Portrait calibration at its panel's 1536 × 2048, and a
+// 16-inch-like one on a small panel with flipImageX, flipImageY and flipSubp). The single view
+// keeps the status text on and leaves its box out of the comparison, reading the box back glyph
+// by glyph instead; the others run with --no-status. Without a display server --window is one
+// line and exit 2.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -182,13 +183,15 @@ TEST_F(WindowCli, StereoScreenshotEqualsTheSideBySideFile) {
 }
 
 TEST_F(WindowCli, LenticularScreenshotEqualsTheCpuPanelFileWithoutValidationErrors) {
-  // A 120 × 160 panel with Portrait-like lenticules (the DPI shrunk with the screen).
+  // A Portrait calibration at the panel's own 1536 × 2048 (the magnitudes of a unit's
+  // visual.json), its 48 views small (21 × 28) so that the frames stay cheap: the whole panel
+  // image, GPU interleave against the CPU's.
   const fs::path cal = dir_ / "visual.json";
   std::ofstream(cal) << R"({"pitch": {"value": 52.58737671470091}, "slope": {"value": -7.196136200157333},
-    "center": {"value": 0.4321881363063158}, "DPI": {"value": 25.3125}, "screenW": {"value": 120.0},
-    "screenH": {"value": 160.0}, "invView": {"value": 1.0}, "flipImageX": {"value": 0.0},
+    "center": {"value": 0.4321881363063158}, "DPI": {"value": 324.0}, "screenW": {"value": 1536.0},
+    "screenH": {"value": 2048.0}, "invView": {"value": 1.0}, "flipImageX": {"value": 0.0},
     "flipImageY": {"value": 0.0}, "flipSubp": {"value": 0.0}})";
-  Xvfb x(120, 160);
+  Xvfb x(1536, 2048);
   ASSERT_TRUE(x.running()) << "Xvfb did not start";
   const int code = run_and_shoot(x.display(),
                                  "render " + cli::cornell() +
@@ -197,7 +200,7 @@ TEST_F(WindowCli, LenticularScreenshotEqualsTheCpuPanelFileWithoutValidationErro
                                      path("out") + kFast + kNoStatus,
                                  dir_ / "shot.xwd", "DDISH_VALIDATION=1");
   ASSERT_EQ(code, 0) << err_;
-  EXPECT_NE(err_.find("lenticular panel image 120x160"), std::string::npos) << err_;
+  EXPECT_NE(err_.find("lenticular panel image 1536x2048"), std::string::npos) << err_;
   EXPECT_NE(err_.find("validation: 0 errors"), std::string::npos) << err_;
   expect_equal(dir_ / "shot.xwd", dir_ / "out" / "cornell_box_lenticular.png");
 }
