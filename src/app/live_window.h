@@ -89,7 +89,8 @@ class LiveWindow {
   raster::RenderRequest request(bool read_back) const;
   // Composes and presents the frame gathered last; returns the milliseconds it took.
   double present();
-  // Keeps presenting the last frame until the window is closed or `stop` is raised.
+  // Keeps presenting the last frame until the window is closed or `stop` is raised. (On a
+  // lenticular panel the text is in the gathered views, so H cannot hide it from a held frame.)
   void hold(const std::atomic<bool>& stop);
 
   LiveSwitches take_switches();
