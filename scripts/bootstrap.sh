@@ -27,6 +27,8 @@ PACKAGES=(
   # the live window (ddish render --window, src/window): SDL2 with its Vulkan surface; the window
   # tests run under a private Xvfb server and screenshot it with xwd (x11-apps)
   libsdl2-dev xvfb x11-apps
+  # the window's key and minimise tests drive it as a user would (X key events, unmap / map)
+  xdotool
   # silences a broken-target warning in Debian's Imath CMake files (pulled in by OpenImageIO)
   python3-imath
 )

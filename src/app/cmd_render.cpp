@@ -145,8 +145,9 @@ void check(const RenderArgs& a) {
   parse_pose(a.view.camera);
   raster::parse_tone_curve(a.tonemap);
   if (a.frames < 1) throw std::invalid_argument("--frames must be at least 1");
-  if (!a.live.window && (a.monitor_given || a.live.fullscreen || a.live.mailbox || a.live.hold))
-    throw std::invalid_argument("--monitor, --fullscreen, --mailbox and --hold go with --window");
+  if (!a.live.window &&
+      (a.monitor_given || a.live.fullscreen || a.live.mailbox || a.live.hold || a.live.no_status))
+    throw std::invalid_argument("--monitor, --fullscreen, --mailbox, --hold and --no-status go with --window");
   if (a.live.hold && !a.frames_given)
     throw std::invalid_argument("--hold keeps the last of --frames N on screen: give --frames");
   if (a.monitor_given && a.live.monitor < 0) throw std::invalid_argument("--monitor must be 0 or more");
@@ -490,7 +491,7 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
                 "show the frames live in a window (SDL2 + Vulkan swapchain): the view, the stereo "
                 "pair, the quilt, or with --calibration the lenticular panel image built on the "
                 "GPU; mouse: left drag orbit, right/middle drag pan, wheel dolly; keys: WASD QE "
-                "fly, I indirect light, U schedule, G probe-grid overlay, Esc quit");
+                "fly, I indirect light, U schedule, G probe-grid overlay, H status text, Esc quit");
   cmd->add_option("--monitor", a.live.monitor,
                   "with --window: the monitor (SDL display index, listed in the run log); default: "
                   "the monitor of the profile's panel resolution (a Looking Glass), else 0")
@@ -502,6 +503,10 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
   cmd->add_flag("--hold", a.live.hold,
                 "with --window and --frames: after the last frame keep showing it until the window "
                 "is closed (Esc) or the process is signalled");
+  cmd->add_flag("--no-status", a.live.no_status,
+                "with --window: start with the status text (probes / raster / present ms, views, "
+                "probe age, switches; top-left, on a lenticular panel in every view) hidden; H "
+                "shows it");
   cmd->add_flag("--every{1}", a.every,
                 "--every: write every frame, not only the last; --every=N: every N-th frame "
                 "(frames N-1, 2N-1, ...) and the last")

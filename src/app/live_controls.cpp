@@ -21,7 +21,9 @@ LiveControls::LiveControls(LiveWindow& live, raster::Renderer& renderer,
       scheduler_(scheduler),
       no_indirect_(no_indirect),
       tag_(tag),
-      indirect_(!no_indirect) {}
+      indirect_(!no_indirect) {
+  live_.set_tag(tag);
+}
 
 std::vector<scene::View> LiveControls::frame_views(const scene::Scene& posed,
                                                    const DisplayChoice& choice,
@@ -48,6 +50,8 @@ std::vector<scene::View> LiveControls::frame_views(const scene::Scene& posed,
     overlay_ = !overlay_;
     std::fprintf(stderr, "%s: G: probe-grid overlay %s\n", tag_, overlay_ ? "on" : "off");
   }
+  if (sw.status)
+    std::fprintf(stderr, "%s: H: status text %s\n", tag_, live_.status_shown() ? "shown" : "hidden");
   DisplayArgs d = display;
   d.focal_distance = live_.focal_distance();
   std::vector<scene::View> views = make_frame_views(posed, choice, d, camera, live_.camera()).views;
@@ -55,18 +59,23 @@ std::vector<scene::View> LiveControls::frame_views(const scene::Scene& posed,
   return views;
 }
 
-std::string LiveControls::status(const std::string& display, const FrameReport& r,
-                                 double present_ms) const {
+LiveStatus LiveControls::status(const std::string& display, const FrameReport& r,
+                                double present_ms) const {
   const metrics::FrameTimings& t = *r.timings;
   const double raster = raster_ms(t);
-  return fmt::format(
+  const double probes = t.stage_ms("tracer_update") + t.stage_ms("probe_update") + t.stage_ms("upload");
+  const char* schedule = scheduler_ ? probes::schedule_mode_name(scheduler_->options().mode) : "remote probes";
+  LiveStatus s;
+  s.title = fmt::format(
       "ddish {} · {} views · probes {:.1f} ms · raster {:.1f} ms · present {:.1f} ms · "
       "oldest probe {} frames · indirect {} · {}{}",
-      display, r.counts.views,
-      t.stage_ms("tracer_update") + t.stage_ms("probe_update") + t.stage_ms("upload"), raster,
-      present_ms, r.counts.oldest_probe_age, indirect_ ? "on" : "off",
-      scheduler_ ? probes::schedule_mode_name(scheduler_->options().mode) : "remote probes",
-      overlay_ ? " · probe grid" : "");
+      display, r.counts.views, probes, raster, present_ms, r.counts.oldest_probe_age,
+      indirect_ ? "on" : "off", schedule, overlay_ ? " · probe grid" : "");
+  s.lines.push_back(fmt::format("PROBES {:.1f}  RASTER {:.1f}  PRESENT {:.1f} MS", probes, raster, present_ms));
+  s.lines.push_back(fmt::format("{} {}  PROBE AGE {}  INDIRECT {}  {}{}", r.counts.views,
+                                r.counts.views == 1 ? "VIEW" : "VIEWS", r.counts.oldest_probe_age,
+                                indirect_ ? "ON" : "OFF", schedule, overlay_ ? "  GRID" : ""));
+  return s;
 }
 
 }  // namespace ddish::app

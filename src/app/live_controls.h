@@ -34,9 +34,12 @@ class LiveControls {
 
   const std::atomic<bool>& stop() const { return stop_; }
   const bool& indirect() const { return indirect_; }  // SwitchableProbes reads it
-  // The window title: the display, views, probes / raster / present milliseconds, the oldest
-  // probe's age and the switches.
-  std::string status(const std::string& display, const FrameReport& report, double present_ms) const;
+  // The window title and status text of a frame: the display (title only), probes / raster /
+  // present milliseconds, views, the oldest probe's age in frames and the switches. The text:
+  //   PROBES 12.3  RASTER 45.6  PRESENT 0.8 MS
+  //   48 VIEWS  PROBE AGE 3  INDIRECT ON  VISIBILITY  GRID
+  // (UNIFORM or VISIBILITY: the schedule, REMOTE PROBES from a server; GRID: the overlay is on).
+  LiveStatus status(const std::string& display, const FrameReport& report, double present_ms) const;
 
  private:
   LiveWindow& live_;

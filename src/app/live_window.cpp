@@ -1,5 +1,7 @@
 #include "app/live_window.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <thread>
 #include <utility>
 
@@ -35,6 +37,7 @@ LiveWindow::LiveWindow(const LiveArgs& args, const std::string& title, int frame
                                     .fullscreen = args.fullscreen}),
       camera_(start.eye, start.eye + glm::normalize(start.forward) * focal, start.up, start.yfov),
       start_(start),
+      status_shown_(!args.no_status),
       last_pump_(std::chrono::steady_clock::now()) {}
 
 LiveWindow::~LiveWindow() { detach(); }
@@ -70,15 +73,27 @@ void LiveWindow::pump() {
   const int height = int(window_.drawable_size().height);
   SDL_Event ev;
   while (SDL_PollEvent(&ev)) input_.handle(ev, camera_, height, actions);
-  // Minimised: nothing to show, so the loop waits here (no frames drawn) until restored.
-  while (input_.minimised() && !actions.quit && !stop_flag().load()) {
-    if (SDL_WaitEventTimeout(&ev, 100)) input_.handle(ev, camera_, height, actions);
+  // Minimised: nothing to show, so the loop waits here (no frames drawn, nothing presented)
+  // until restored, and goes on from where it was.
+  if (input_.minimised() && !actions.quit && !stop_flag().load()) {
+    std::fprintf(stderr, "%s: window minimised: no frames until it is restored\n", tag_.c_str());
+    const auto since = std::chrono::steady_clock::now();
+    while (input_.minimised() && !actions.quit && !stop_flag().load()) {
+      if (SDL_WaitEventTimeout(&ev, 100)) input_.handle(ev, camera_, height, actions);
+    }
+    const auto until = std::chrono::steady_clock::now();
+    std::fprintf(stderr, "%s: window %s after %.0f ms minimised\n", tag_.c_str(),
+                 input_.minimised() ? "closing" : "restored",
+                 std::chrono::duration<double, std::milli>(until - since).count());
+    last_pump_ = until;  // the fly keys do not count the time away
   }
   input_.advance(camera_, seconds);
   quit_ = quit_ || actions.quit;
   switches_.indirect = switches_.indirect != actions.toggle_indirect;
   switches_.schedule = switches_.schedule != actions.toggle_schedule;
   switches_.overlay = switches_.overlay != actions.toggle_overlay;
+  switches_.status = switches_.status != actions.toggle_status;
+  if (actions.toggle_status) status_shown_ = !status_shown_;
   if (actions.resized && presenter_) presenter_->resize(window_.drawable_size());
 }
 
@@ -106,6 +121,27 @@ void set_probe_overlay(LiveWindow& live, const probes::ProbeVolume* volume,
   live.set_overlay(points, matrices);
 }
 
+void LiveWindow::set_status(const LiveStatus& status) {
+  window_.set_title(status.title);
+  status_lines_ = status.lines;
+}
+
+namespace {
+
+// The text scale for an image of out_w × out_h shown in a drawable of draw_w × draw_h
+// (LiveWindow::set_status); `view_w`: the width the text is drawn at, when it is not the image's.
+int text_scale(int draw_w, int draw_h, int out_w, int out_h, int view_w) {
+  const int base = std::max(1, draw_w / 1280);
+  if (view_w > 0) return std::max(1, base * view_w / std::max(1, out_w));
+  const gpu::PresentPlacement at = gpu::place_frame(std::uint32_t(out_w), std::uint32_t(out_h),
+                                                    std::uint32_t(std::max(1, draw_w)),
+                                                    std::uint32_t(std::max(1, draw_h)));
+  // Shrunk to at.width of out_w: each text pixel must cover `base` drawable pixels still.
+  return std::max(1, (base * out_w + int(at.width) - 1) / std::max(1, int(at.width)));
+}
+
+}  // namespace
+
 LiveSwitches LiveWindow::take_switches() { return std::exchange(switches_, LiveSwitches{}); }
 
 scene::Camera LiveWindow::camera() const {
@@ -129,7 +165,15 @@ raster::RenderRequest LiveWindow::request(bool read_back) const {
 
 double LiveWindow::present() {
   const auto t0 = std::chrono::steady_clock::now();
-  const display::GpuCompositor& comp = *compositor_;
+  display::GpuCompositor& comp = *compositor_;
+  if (status_shown_ && !status_lines_.empty()) {
+    const VkExtent2D d = window_.drawable_size();
+    comp.set_status(status_lines_, text_scale(int(d.width), int(d.height), comp.output_width(),
+                                              comp.output_height(),
+                                              comp.lenticular() ? comp.layout().tile_width : 0));
+  } else {
+    comp.set_status({}, 1);
+  }
   presenter_->present(comp.output(), std::uint32_t(comp.output_width()),
                       std::uint32_t(comp.output_height()),
                       [&](VkCommandBuffer cmd) { comp.record_compose(cmd); });

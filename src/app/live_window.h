@@ -41,6 +41,14 @@ struct LiveArgs {
   bool fullscreen = false;  // --fullscreen
   bool mailbox = false;     // --mailbox: MAILBOX where offered, else FIFO
   bool hold = false;        // --hold: after the last frame keep showing it until closed
+  bool no_status = false;   // --no-status: start with the status text hidden (H toggles it)
+};
+
+// What the window says about the run: the title line, and the lines of status text drawn in
+// the window's top-left corner (display/status_font.h's capitals).
+struct LiveStatus {
+  std::string title;
+  std::vector<std::string> lines;
 };
 
 // What the keys switched since the last take_switches().
@@ -48,6 +56,7 @@ struct LiveSwitches {
   bool indirect = false;
   bool schedule = false;
   bool overlay = false;
+  bool status = false;
 };
 
 class LiveWindow {
@@ -80,15 +89,23 @@ class LiveWindow {
   raster::RenderRequest request(bool read_back) const;
   // Composes and presents the frame gathered last; returns the milliseconds it took.
   double present();
-  // Keeps presenting the last frame until the window is closed or `stop` is raised.
+  // Keeps presenting the last frame until the window is closed or `stop` is raised. (On a
+  // lenticular panel the text is in the gathered views, so H cannot hide it from a held frame.)
   void hold(const std::atomic<bool>& stop);
 
   LiveSwitches take_switches();
+  // The run's name in the log lines the window writes (minimised, restored): "render", "view".
+  void set_tag(const char* tag) { tag_ = tag; }
   // The probe-grid overlay for the next presents (empty: none).
   void set_overlay(std::span<const display::GpuCompositor::OverlayPoint> points,
                    std::span<const glm::mat4> view_projections);
   bool quit() const { return quit_; }
-  void set_status(const std::string& line) { window_.set_title(line); }
+  // The title now; the text from the next present on (while shown), at a scale that keeps it
+  // readable: 1 up to a 1280-pixel-wide window, one more per 1280 pixels, divided by how much
+  // the presenter shrinks the image to fit (an atlas) or by how much the panel enlarges a view
+  // (lenticular: the text is drawn into every view).
+  void set_status(const LiveStatus& status);
+  bool status_shown() const { return status_shown_; }
   const window::Window& window() const { return window_; }
   int output_width() const;
   int output_height() const;
@@ -102,6 +119,9 @@ class LiveWindow {
   bool quit_ = false;
   bool resized_ = false;
   LiveSwitches switches_;
+  std::string tag_ = "render";
+  bool status_shown_ = true;
+  std::vector<std::string> status_lines_;
   std::chrono::steady_clock::time_point last_pump_;
   std::unique_ptr<display::GpuCompositor> compositor_;
   std::unique_ptr<gpu::Presenter> presenter_;

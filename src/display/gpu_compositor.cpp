@@ -1,10 +1,12 @@
 #include "display/gpu_compositor.h"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "display/status_font.h"
 #include "gpu/commands.h"
 #include "gpu/device.h"
 #include "gpu/shader.h"
@@ -30,6 +32,11 @@ struct AtlasParams {
 
 struct OverlayParams {
   std::uint32_t point_count, view_count, width, height;
+};
+
+struct StatusParams {
+  std::uint32_t width, height, image_count, box_width, box_height, scale, columns, lines;
+  std::uint32_t glyph_width, glyph_height, cell_width, cell_height, padding, ink, paper;
 };
 
 struct LenticularParams {
@@ -161,6 +168,58 @@ void GpuCompositor::set_overlay(std::span<const OverlayPoint> points,
   overlay_points_ = std::uint32_t(points.size());
 }
 
+void GpuCompositor::set_status(std::span<const std::string> lines, int scale) {
+  if (scale < 1) throw std::invalid_argument("status text scale " + std::to_string(scale));
+  status_lines_ = 0;
+  if (lines.empty()) return;
+  const std::vector<std::uint32_t> cells = status_cells(lines);
+  const VkDeviceSize bytes = cells.size() * sizeof(std::uint32_t);
+  const bool rebind = !status_ || status_cells_.size() < bytes;
+  if (status_cells_.size() < bytes)
+    status_cells_ = gpu::Buffer(*device_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUse::upload);
+  status_cells_.write(cells.data(), bytes);
+  if (!status_) {
+    std::vector<std::uint32_t> rows;
+    for (const Glyph& g : font_glyphs()) rows.insert(rows.end(), g.begin(), g.end());
+    gpu::CommandRunner runner(*device_);
+    font_ = device_buffer(*device_, runner, rows);
+    status_.emplace(*device_, gpu::ShaderModule::load(*device_, "status_text.comp"),
+                    gpu::ComputePipelineDesc{.storage_buffers = 3,
+                                             .push_constant_bytes = sizeof(StatusParams)});
+  }
+  // The text goes where it is read: on the composed atlas, or in every view of a panel.
+  if (rebind) status_->bind_buffers({lenticular_ ? &gathered_ : &output_, &status_cells_, &font_});
+  status_lines_ = std::uint32_t(lines.size());
+  status_scale_ = std::uint32_t(scale);
+}
+
+void GpuCompositor::record_status(VkCommandBuffer cmd) const {
+  const std::uint32_t scale = status_scale_;
+  const auto box_w = std::uint32_t(status_box_width(int(scale)));
+  const auto box_h = std::uint32_t(status_box_height(int(status_lines_), int(scale)));
+  const bool views = lenticular_.has_value();
+  const StatusParams params{
+      .width = std::uint32_t(views ? layout_.tile_width : output_width_),
+      .height = std::uint32_t(views ? layout_.tile_height : output_height_),
+      .image_count = views ? std::uint32_t(views_) : 1u,
+      .box_width = box_w,
+      .box_height = box_h,
+      .scale = scale,
+      .columns = std::uint32_t(kStatusColumns),
+      .lines = status_lines_,
+      .glyph_width = std::uint32_t(kGlyphWidth),
+      .glyph_height = std::uint32_t(kGlyphHeight),
+      .cell_width = std::uint32_t(kCellWidth),
+      .cell_height = std::uint32_t(kCellHeight),
+      .padding = std::uint32_t(kTextPadding),
+      .ink = kTextInk,
+      .paper = kTextPaper};
+  status_->bind(cmd);
+  status_->push(cmd, params);
+  status_->dispatch(cmd, gpu::group_count(std::min(box_w, params.width), kGroup),
+                    gpu::group_count(std::min(box_h, params.height), kGroup), params.image_count);
+}
+
 void GpuCompositor::record_compose(VkCommandBuffer cmd) const {
   // The gathers may be in earlier submissions: a barrier orders them on the queue all the same.
   gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
@@ -172,6 +231,12 @@ void GpuCompositor::record_compose(VkCommandBuffer cmd) const {
                                       std::uint32_t(layout_.tile_width),
                                       std::uint32_t(layout_.tile_height)});
     overlay_->dispatch(cmd, gpu::group_count(overlay_points_ * std::uint32_t(views_), 64));
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                        VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  }
+  if (status_lines_ > 0 && lenticular_) {  // into the views, over the overlay's dots
+    record_status(cmd);
     gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
   }
@@ -192,6 +257,11 @@ void GpuCompositor::record_compose(VkCommandBuffer cmd) const {
   }
   pipeline_->dispatch(cmd, gpu::group_count(std::uint32_t(output_width_), kGroup),
                       gpu::group_count(std::uint32_t(output_height_), kGroup));
+  if (status_lines_ > 0 && !lenticular_) {  // over the composed atlas
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+    record_status(cmd);
+  }
   gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
 }

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 
 #include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
@@ -66,7 +67,15 @@ class GpuCompositor {
   // pass of this compositor meanwhile (the window composes synchronously).
   void set_overlay(std::span<const OverlayPoint> points, std::span<const glm::mat4> view_projections);
 
-  // Records the compose pass (after the overlay, if set), with the barriers from the gathers' transfer writes before it
+  // Sets the status text for the next compose passes (display/status_font.h: the lines, each cut
+  // at kStatusColumns, in a dark box at the top-left corner, every length × `scale`): drawn
+  // into the composed image for an atlas, into every view before the interleave for a
+  // lenticular panel. No lines: no text. Same rule as set_overlay for a running compose pass.
+  // Throws std::invalid_argument for a scale below 1.
+  void set_status(std::span<const std::string> lines, int scale);
+
+  // Records the compose pass (after the overlay and, for a lenticular panel, the text, if set;
+  // for an atlas the text after it), with the barriers from the gathers' transfer writes before it
   // and from its writes to transfer reads of output() after it.
   void record_compose(VkCommandBuffer cmd) const;
 
@@ -98,6 +107,13 @@ class GpuCompositor {
   gpu::Buffer overlay_positions_;  // host-visible, grown as needed
   gpu::Buffer overlay_matrices_;
   std::optional<gpu::ComputePipeline> overlay_;
+  std::uint32_t status_lines_ = 0;
+  std::uint32_t status_scale_ = 1;
+  gpu::Buffer status_cells_;  // host-visible glyph indices, grown as needed
+  gpu::Buffer font_;          // the glyph rows, one uint each
+  std::optional<gpu::ComputePipeline> status_;
+
+  void record_status(VkCommandBuffer cmd) const;
 };
 
 }  // namespace ddish::display

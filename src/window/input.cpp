@@ -63,6 +63,7 @@ void InputState::handle(const SDL_Event& ev, OrbitCamera& camera, int window_hei
         case SDLK_i: if (down && !ev.key.repeat) actions.toggle_indirect = !actions.toggle_indirect; break;
         case SDLK_u: if (down && !ev.key.repeat) actions.toggle_schedule = !actions.toggle_schedule; break;
         case SDLK_g: if (down && !ev.key.repeat) actions.toggle_overlay = !actions.toggle_overlay; break;
+        case SDLK_h: if (down && !ev.key.repeat) actions.toggle_status = !actions.toggle_status; break;
         default: break;
       }
       break;

@@ -7,6 +7,7 @@
 //   I                   indirect light on / off
 //   U                   probe schedule: uniform ⇄ visibility
 //   G                   probe-grid overlay on / off
+//   H                   status text in the window shown / hidden
 //   Esc, window close   quit
 #pragma once
 
@@ -22,6 +23,7 @@ struct InputActions {
   bool toggle_indirect = false;
   bool toggle_schedule = false;
   bool toggle_overlay = false;
+  bool toggle_status = false;
   bool resized = false;    // the drawable size changed (or the window was restored)
   bool minimised = false;  // now minimised; restored clears it
 };

@@ -5,12 +5,14 @@
 // pass equals the quilt the file writer composes. Views are uploaded as packed RGBA8, the form
 // raster::BatchViews::display hands them over in, gathered in two batches as the renderer would.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "../gpu/gpu_test.h"
+#include "status_text.h"
 #include "display/gpu_compositor.h"
 #include "display/lenticular.h"
 #include "display/quilt.h"
@@ -93,13 +95,18 @@ RgbImage cpu_quilt(const std::vector<std::uint32_t>& px, int views, const QuiltL
 class GpuCompositorTest : public GpuTest {
  protected:
   // Uploads the views, gathers them in two batches, composes and reads the output back.
+  // `setup` (optional) sets the compositor's overlay or text first; `composes` passes run on
+  // the same gathered views (as the window's --hold does).
   std::vector<std::uint32_t> compose(const std::vector<std::uint32_t>& px, int views,
                                      const QuiltLayout& layout,
-                                     const std::optional<LenticularMapping>& mapping) {
+                                     const std::optional<LenticularMapping>& mapping,
+                                     const std::function<void(GpuCompositor&)>& setup = {},
+                                     int composes = 1) {
     const std::vector<float> decoded = decoded_table();
     GpuCompositor comp(device(), layout, views, mapping,
                        Srgb8Tables{std::span<const float, 256>(decoded.data(), 256),
                                    metrics::srgb8_midpoints()});
+    if (setup) setup(comp);
     gpu::CommandRunner runner(device());
     gpu::Buffer input(device(), px.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                       gpu::MemoryUse::upload);
@@ -119,6 +126,7 @@ class GpuCompositorTest : public GpuTest {
       if (half > 0) comp.record_gather(cmd, input, 0, half, w, h);  // one view: one batch
       comp.record_compose(cmd);
     });
+    for (int k = 1; k < composes; ++k) runner.run([&](VkCommandBuffer cmd) { comp.record_compose(cmd); });
     return gpu::download<std::uint32_t>(device(), runner, comp.output(),
                                         std::size_t(comp.output_width()) * std::size_t(comp.output_height()));
   }
@@ -232,6 +240,85 @@ TEST_F(GpuCompositorTest, OverlayMarksEachPointInEveryViewWithItsOwnProjection) 
   const auto plain = gpu::download<std::uint32_t>(device(), runner, comp.output(), 32 * 12);
   EXPECT_EQ(plain[6 * 32 + 8], px[6 * 16 + 8]);
   EXPECT_THROW(comp.set_overlay(points, std::span<const glm::mat4>(matrices.data(), 1)), std::invalid_argument);
+}
+
+// Every character of the font, small letters, a character the font lacks, and a status line.
+const std::vector<std::string> kText{" 0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ.,:/-+()%=?_",
+                                     "abc xyz #&", "PROBES 12.3  RASTER 45.6  PRESENT 0.8 MS"};
+const std::vector<std::string> kTextRead{" 0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ.,:/-+()%=?_",
+                                         "ABC XYZ ??", "PROBES 12.3  RASTER 45.6  PRESENT 0.8 MS"};
+
+TEST_F(GpuCompositorTest, FontGlyphsAreDistinctAndLookedUpAsDocumented) {
+  const auto glyphs = font_glyphs();
+  ASSERT_EQ(glyphs.size(), font_characters().size());
+  for (std::size_t a = 0; a < glyphs.size(); ++a)
+    for (std::size_t b = a + 1; b < glyphs.size(); ++b)
+      EXPECT_NE(glyphs[a], glyphs[b]) << font_characters()[a] << " and " << font_characters()[b];
+  EXPECT_EQ(glyph_index(' '), 0u);
+  EXPECT_EQ(glyph_index('q'), glyph_index('Q'));
+  EXPECT_EQ(glyph_index('#'), glyph_index('?'));
+  // '1': a centred stem with a flag and a foot.
+  EXPECT_EQ(glyphs[glyph_index('1')], (Glyph{0b00100, 0b01100, 0b00100, 0b00100, 0b00100, 0b00100, 0b01110}));
+  EXPECT_EQ(status_box_width(1), 339);
+  EXPECT_EQ(status_box_height(2, 3), 3 * 20);
+}
+
+TEST_F(GpuCompositorTest, StatusTextOnTheAtlasEqualsTheCpuDrawingOfTheFont) {
+  // A single view wide enough for the box at scale 1, and at scale 2 cut by the image's edges;
+  // then the text off again. The box covers the top-left corner; the rest is the view.
+  const QuiltLayout layout = layout_from_tiles(1, 1, 360, 40);
+  const std::vector<std::uint32_t> px = make_views(1, 360, 40, true);
+  for (const int scale : {1, 2}) {
+    SCOPED_TRACE("scale " + std::to_string(scale));
+    const std::vector<std::uint32_t> out =
+        compose(px, 1, layout, std::nullopt, [&](GpuCompositor& c) { c.set_status(kText, scale); }, 2);
+    std::vector<std::uint32_t> want = px;
+    test::draw_status(want, 0, 360, 40, kText, scale);
+    int mismatches = 0;
+    for (std::size_t i = 0; i < want.size(); ++i) mismatches += out[i] != want[i];
+    EXPECT_EQ(mismatches, 0);
+    if (scale == 1) {
+      EXPECT_EQ(test::read_status([&](int x, int y) { return out[std::size_t(y) * 360 + std::size_t(x)]; }, 3, 1),
+                kTextRead);
+      EXPECT_EQ(out[std::size_t(38) * 360 + 200], px[std::size_t(38) * 360 + 200]);  // below the box
+    }
+  }
+  const std::vector<std::uint32_t> off = compose(px, 1, layout, std::nullopt, [&](GpuCompositor& c) {
+    c.set_status(kText, 1);
+    c.set_status({}, 1);
+  });
+  EXPECT_EQ(off, px);
+  const std::vector<float> decoded = decoded_table();
+  GpuCompositor comp(device(), layout, 1, std::nullopt,
+                     Srgb8Tables{std::span<const float, 256>(decoded.data(), 256), metrics::srgb8_midpoints()});
+  EXPECT_THROW(comp.set_status(kText, 0), std::invalid_argument);
+}
+
+TEST_F(GpuCompositorTest, StatusTextOnAPanelIsInEveryViewBeforeTheInterleave) {
+  // The text drawn into each view (cut at the views' 60 x 80), then the CPU interleave of those
+  // views equals the GPU panel byte for byte; composing again on the same views (a held frame)
+  // changes nothing.
+  const Calibration c = small(true, false, false, false);
+  const QuiltLayout layout = layout_from_tiles(8, 6, 60, 80);
+  std::vector<std::uint32_t> px = make_views(48, 60, 80, true);
+  const LenticularMapping m = lenticular_mapping(c);
+  const std::vector<std::string> lines{"PROBES 1.2", "48 VIEWS"};
+  const std::vector<std::uint32_t> panel =
+      compose(px, 48, layout, m, [&](GpuCompositor& g) { g.set_status(lines, 1); }, 2);
+  for (int k = 0; k < 48; ++k) test::draw_status(px, std::size_t(k) * 60 * 80, 60, 80, lines, 1);
+  const RgbImage cpu = interleave(cpu_quilt(px, 48, layout).view(), layout, 48, m);
+  ASSERT_EQ(panel.size(), std::size_t(cpu.width()) * std::size_t(cpu.height()));
+  int mismatches = 0, text_changed = 0;
+  const std::vector<std::uint32_t> plain = compose(make_views(48, 60, 80, true), 48, layout, m);
+  for (int y = 0; y < cpu.height(); ++y)
+    for (int x = 0; x < cpu.width(); ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(cpu.width()) + std::size_t(x);
+      text_changed += panel[i] != plain[i];
+      for (int ch = 0; ch < 3; ++ch)
+        mismatches += metrics::srgb8_encode(cpu.pixel(x, y)[ch]) != std::uint8_t(panel[i] >> (8 * ch));
+    }
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(text_changed, 1000);  // the text is really there: a panel region the size of the box
 }
 
 TEST_F(GpuCompositorTest, BadGatherIsRefused) {

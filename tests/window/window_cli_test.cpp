@@ -4,8 +4,10 @@
 // the window's image is the renderer's display bytes (atlas) or the GPU interleave (lenticular,
 // equal bit for bit to the CPU's: test_display's GpuCompositorTest), copied 1:1 (nearest blit)
 // into a UNORM swapchain, and Xvfb's 24-bit visual keeps 8 bits a channel. Single view, stereo
-// pair and lenticular panel image (a Portrait-like and a 16-inch-like calibration on small panels,
-// the latter with flipImageX, flipImageY and flipSubp). Without a display server --window is one
+// pair and lenticular panel image (a Portrait calibration at its panel's 1536 × 2048, and a
+// 16-inch-like one on a small panel with flipImageX, flipImageY and flipSubp). The single view
+// keeps the status text on and leaves its box out of the comparison, reading the box back glyph
+// by glyph instead; the others run with --no-status. Without a display server --window is one
 // line and exit 2.
 #include <signal.h>
 #include <sys/wait.h>
@@ -14,6 +16,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <string>
 #include <thread>
@@ -22,6 +25,7 @@
 #include <gtest/gtest.h>
 
 #include "../app/cli_runner.h"
+#include "../display/status_text.h"
 #include "xvfb.h"
 #include "xwd_image.h"
 
@@ -104,14 +108,17 @@ class WindowCli : public cli::TempDirTest {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   }
 
-  // Differing channel bytes between the screenshot and the PNG, and the largest difference.
-  void expect_equal(const fs::path& shot, const fs::path& png) {
+  // Differing channel bytes between the screenshot and the PNG, and the largest difference;
+  // pixels inside `skip_w` × `skip_h` at the top-left (the status text's box) are not compared.
+  void expect_equal(const fs::path& shot, const fs::path& png, int skip_w = 0, int skip_h = 0) {
     const Rgb8Image a = window_test::read_xwd(shot.string());
     const Rgb8Image b = read_png(png);
     ASSERT_EQ(a.width, b.width);
     ASSERT_EQ(a.height, b.height);
     int differing = 0, largest = 0;
     for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+      const int x = int(i / 3) % a.width, y = int(i / 3) / a.width;
+      if (x < skip_w && y < skip_h) continue;
       const int d = std::abs(int(a.rgb[i]) - int(b.rgb[i]));
       differing += d != 0;
       largest = std::max(largest, d);
@@ -128,17 +135,35 @@ class WindowCli : public cli::TempDirTest {
 };
 
 const std::string kFast = " --probe-samples 16 --msaa 1 --frames 10 --window --fullscreen --hold";
+const std::string kNoStatus = " --no-status";  // the screenshot is the frame alone
 
-TEST_F(WindowCli, SingleViewScreenshotEqualsTheFile) {
-  Xvfb x(96, 64);
+TEST_F(WindowCli, SingleViewScreenshotEqualsTheFileAndShowsTheStatusText) {
+  // The status text is on (the default): outside its box the screenshot equals the file; inside,
+  // every cell reads back as a glyph of the font (tests/display/status_text.h), and the lines
+  // say what the last frame's did: its stage times, 1 view, the probe age, indirect on and the
+  // default schedule. The other screenshot tests run with --no-status.
+  Xvfb x(384, 64);
   ASSERT_TRUE(x.running()) << "Xvfb did not start";
   const int code = run_and_shoot(x.display(),
-                                 "render " + cli::cornell() + " --width 96 --height 64 --out " +
+                                 "render " + cli::cornell() + " --width 384 --height 64 --out " +
                                      path("out") + kFast,
                                  dir_ / "shot.xwd");
   ASSERT_EQ(code, 0) << err_;
   EXPECT_NE(err_.find("frame 10/10"), std::string::npos) << err_;
-  expect_equal(dir_ / "shot.xwd", dir_ / "out" / "frame_0009.png");
+  const int box_w = ddish::display::status_box_width(1), box_h = ddish::display::status_box_height(2, 1);
+  expect_equal(dir_ / "shot.xwd", dir_ / "out" / "frame_0009.png", box_w, box_h);
+  const Rgb8Image shot = window_test::read_xwd((dir_ / "shot.xwd").string());
+  const std::vector<std::string> lines = ddish::display::test::read_status(
+      [&](int px, int py) {
+        const std::size_t i = 3 * (std::size_t(py) * std::size_t(shot.width) + std::size_t(px));
+        return std::uint32_t(shot.rgb[i]) | std::uint32_t(shot.rgb[i + 1]) << 8 | std::uint32_t(shot.rgb[i + 2]) << 16;
+      },
+      2, 1);
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_TRUE(std::regex_match(lines[0], std::regex(R"(PROBES \d+\.\d  RASTER \d+\.\d  PRESENT \d+\.\d MS)")))
+      << lines[0];
+  EXPECT_TRUE(std::regex_match(lines[1], std::regex(R"(1 VIEW  PROBE AGE \d+  INDIRECT ON  VISIBILITY)")))
+      << lines[1];
 }
 
 TEST_F(WindowCli, StereoScreenshotEqualsTheSideBySideFile) {
@@ -147,7 +172,7 @@ TEST_F(WindowCli, StereoScreenshotEqualsTheSideBySideFile) {
   const int code = run_and_shoot(x.display(),
                                  "render " + cli::cornell() +
                                      " --display stereo --width 64 --height 48 --out " +
-                                     path("out") + kFast,
+                                     path("out") + kFast + kNoStatus,
                                  dir_ / "shot.xwd");
   ASSERT_EQ(code, 0) << err_;
   fs::path png;
@@ -158,22 +183,24 @@ TEST_F(WindowCli, StereoScreenshotEqualsTheSideBySideFile) {
 }
 
 TEST_F(WindowCli, LenticularScreenshotEqualsTheCpuPanelFileWithoutValidationErrors) {
-  // A 120 × 160 panel with Portrait-like lenticules (the DPI shrunk with the screen).
+  // A Portrait calibration at the panel's own 1536 × 2048 (the magnitudes of a unit's
+  // visual.json), its 48 views small (21 × 28) so that the frames stay cheap: the whole panel
+  // image, GPU interleave against the CPU's.
   const fs::path cal = dir_ / "visual.json";
   std::ofstream(cal) << R"({"pitch": {"value": 52.58737671470091}, "slope": {"value": -7.196136200157333},
-    "center": {"value": 0.4321881363063158}, "DPI": {"value": 25.3125}, "screenW": {"value": 120.0},
-    "screenH": {"value": 160.0}, "invView": {"value": 1.0}, "flipImageX": {"value": 0.0},
+    "center": {"value": 0.4321881363063158}, "DPI": {"value": 324.0}, "screenW": {"value": 1536.0},
+    "screenH": {"value": 2048.0}, "invView": {"value": 1.0}, "flipImageX": {"value": 0.0},
     "flipImageY": {"value": 0.0}, "flipSubp": {"value": 0.0}})";
-  Xvfb x(120, 160);
+  Xvfb x(1536, 2048);
   ASSERT_TRUE(x.running()) << "Xvfb did not start";
   const int code = run_and_shoot(x.display(),
                                  "render " + cli::cornell() +
                                      " --display looking-glass-portrait --width 21 --height 28"
                                      " --calibration " + cli::quote(cal.string()) + " --out " +
-                                     path("out") + kFast,
+                                     path("out") + kFast + kNoStatus,
                                  dir_ / "shot.xwd", "DDISH_VALIDATION=1");
   ASSERT_EQ(code, 0) << err_;
-  EXPECT_NE(err_.find("lenticular panel image 120x160"), std::string::npos) << err_;
+  EXPECT_NE(err_.find("lenticular panel image 1536x2048"), std::string::npos) << err_;
   EXPECT_NE(err_.find("validation: 0 errors"), std::string::npos) << err_;
   expect_equal(dir_ / "shot.xwd", dir_ / "out" / "cornell_box_lenticular.png");
 }
@@ -192,7 +219,7 @@ TEST_F(WindowCli, SixteenInchLenticularWithFlipsScreenshotEqualsTheCpuPanelFile)
                                  "render " + cli::cornell() +
                                      " --display looking-glass-16 --width 41 --height 23"
                                      " --calibration " + cli::quote(cal.string()) + " --out " +
-                                     path("out") + kFast,
+                                     path("out") + kFast + kNoStatus,
                                  dir_ / "shot.xwd");
   ASSERT_EQ(code, 0) << err_;
   EXPECT_NE(err_.find("lenticular panel image 160x90"), std::string::npos) << err_;
