@@ -62,6 +62,7 @@
 #include "app/live_controls.h"
 #include "app/live_window.h"
 #include "app/lighting_options.h"
+#include "app/option_checks.h"
 #include "app/output_queue.h"
 #include "app/plan_report.h"
 #include "app/probe_setup.h"
@@ -138,12 +139,7 @@ struct RenderArgs {
 
 void check(const RenderArgs& a) {
   if (a.scene.empty()) throw std::invalid_argument("scene is required (see ddish --help)");  // as CLI11 says it
-  check_probe_options(a.probe);
-  check_schedule_options(a.schedule);
-  check_warmup_options(a.warmup);
-  sky_radiance(a.lighting);
-  parse_pose(a.view.camera);
-  raster::parse_tone_curve(a.tonemap);
+  check_frame_options(a.probe, a.schedule, a.warmup, a.lighting, a.view, a.tonemap);
   if (a.frames < 1) throw std::invalid_argument("--frames must be at least 1");
   if (!a.live.window &&
       (a.monitor_given || a.live.fullscreen || a.live.mailbox || a.live.hold || a.live.no_status))

@@ -31,6 +31,7 @@
 #include "app/lighting_options.h"
 #include "app/probe_options.h"
 #include "app/probe_setup.h"
+#include "app/option_checks.h"
 #include "app/render_timings.h"
 #include "app/scene_identity.h"
 #include "app/schedule_options.h"
@@ -67,12 +68,7 @@ struct XrArgs {
 };
 
 void check(const XrArgs& a) {
-  check_probe_options(a.probe);
-  check_schedule_options(a.schedule);
-  check_warmup_options(a.warmup);
-  sky_radiance(a.lighting);
-  parse_pose(a.view.camera);
-  raster::parse_tone_curve(a.tonemap);
+  check_frame_options(a.probe, a.schedule, a.warmup, a.lighting, a.view, a.tonemap);
   if (a.frames < 0) throw std::invalid_argument("--frames must be >= 0 (0: until the runtime ends the session)");
   if (!a.stream.connect.empty()) net::parse_endpoint_list(a.stream.connect);
   if (a.stream.curve_server_key.empty() != a.stream.curve_secret.empty())
