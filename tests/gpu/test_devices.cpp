@@ -247,7 +247,7 @@ namespace ddish::gpu::test {
 namespace {
 
 // Out of memory and a lost device say what they mean to a user, in one line.
-TEST(GpuErrors, ResourceFailuresSayWhatToDo) {
+TEST(GpuErrors, ResourceFailuresNameTheRemedy) {
   const auto message = [](VkResult r) {
     try {
       check(r, "vkAllocateMemory of 64 bytes");
