@@ -73,6 +73,8 @@ CASES = [
     ("info {bad}/missing_mesh.gltf", "a node naming a mesh that does not exist"),
     ("info {bad}/missing_buffer_file.gltf", "a buffer file that is not there"),
     ("info {bad}/scale_not_finite.gltf", "a node scale beyond float range"),
+    ("render {bad}/huge_textures.gltf", "textures that decode to more than the memory free",
+     "more than the"),
     ("info {bad}/truncated.glb", "a GLB cut off in its header"),
     ("info {bad}/sidecar_counts.gltf", "a sidecar whose grid counts are a word"),
     ("info {bad}/sidecar_negative_sky.gltf", "a sidecar with negative sky radiance"),

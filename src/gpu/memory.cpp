@@ -1,12 +1,11 @@
 #include "gpu/memory.h"
 
 #include <algorithm>
-#include <cinttypes>
-#include <cstdio>
 #include <string>
 
 #include "gpu/device.h"
 #include "gpu/error.h"
+#include "io/host_memory.h"
 
 namespace ddish::gpu {
 
@@ -60,18 +59,6 @@ MemoryTally live_device_memory() {
   return {g_allocations.load(std::memory_order_relaxed), g_bytes.load(std::memory_order_relaxed)};
 }
 
-std::uint64_t host_memory_available() {
-  std::FILE* f = std::fopen("/proc/meminfo", "r");
-  if (!f) return UINT64_MAX;
-  char line[256];
-  std::uint64_t kb = 0;
-  bool found = false;
-  while (!found && std::fgets(line, sizeof line, f))
-    found = std::sscanf(line, "MemAvailable: %" SCNu64 " kB", &kb) == 1;
-  std::fclose(f);
-  return found ? kb * 1024 : UINT64_MAX;
-}
-
 std::uint64_t device_memory_available(const Device& device) {
   const VkPhysicalDeviceMemoryProperties& props = device.memory_properties();
   VkDeviceSize heap = 0;
@@ -81,7 +68,7 @@ std::uint64_t device_memory_available(const Device& device) {
     for (std::uint32_t i = 0; i < props.memoryHeapCount; ++i) heap = std::max(heap, props.memoryHeaps[i].size);
   const auto held = static_cast<std::uint64_t>(std::max<std::int64_t>(0, live_device_memory().bytes));
   std::uint64_t free = heap > held ? heap - held : 0;
-  if (device.info().type == DeviceType::cpu) free = std::min(free, host_memory_available());
+  if (device.info().type == DeviceType::cpu) free = std::min(free, io::host_memory_available());
   return free;
 }
 

@@ -44,8 +44,6 @@ MemoryTally live_device_memory();
 // at most the system's available memory. Callers check a large target against it first, so that
 // an impossible size is one clear error, not the kernel's out-of-memory killer.
 std::uint64_t device_memory_available(const Device& device);
-// The system's available memory (MemAvailable), or UINT64_MAX where it cannot be read.
-std::uint64_t host_memory_available();
 
 class DeviceMemory {
  public:

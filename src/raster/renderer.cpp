@@ -9,6 +9,7 @@
 #include "gpu/error.h"
 #include "gpu/image.h"
 #include "gpu/memory.h"
+#include "io/host_memory.h"
 #include "probes/probe_volume.h"
 #include "scene/scene.h"
 #include "scene/view.h"
@@ -196,22 +197,21 @@ std::uint32_t Renderer::fit_memory(std::uint32_t width, std::uint32_t height, st
                                      : 0;
   const bool limited = options_.memory_limit_bytes > 0;
   const std::uint64_t room = limited ? options_.memory_limit_bytes : gpu::device_memory_available(device_) + held;
-  const auto mib = [](std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; };
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
   if (per_view > room)
     throw gpu::GpuError("one " + size + " view at " + std::to_string(samples_) + " sample" +
-                        (samples_ == 1 ? "" : "s") + " per pixel needs " + mib(per_view) +
+                        (samples_ == 1 ? "" : "s") + " per pixel needs " + io::format_bytes(per_view) +
                         " of device memory (render target, resolve and readback), more than the " +
-                        mib(room) + (limited ? " that --max-gpu-memory allows" : " the device has free") +
+                        io::format_bytes(room) + (limited ? " that --max-gpu-memory allows" : " the device has free") +
                         ": lower the view size or --msaa");
   batch = static_cast<std::uint32_t>(std::min<std::uint64_t>(batch, room / per_view));
   if (read_back) {
     // The frame's images on the host: linear RGB floats and packed display pixels.
     const std::uint64_t host = std::uint64_t{width} * height * views * (sizeof(glm::vec3) + 4);
-    const std::uint64_t free = gpu::host_memory_available();
+    const std::uint64_t free = io::host_memory_available();
     if (host > free)
-      throw gpu::GpuError(std::to_string(views) + " views of " + size + " need " + mib(host) +
-                          " of memory for their read-back pixels, more than the " + mib(free) +
+      throw gpu::GpuError(std::to_string(views) + " views of " + size + " need " + io::format_bytes(host) +
+                          " of memory for their read-back pixels, more than the " + io::format_bytes(free) +
                           " available: fewer views or a smaller view size");
   }
   return std::max<std::uint32_t>(batch, 1);

@@ -12,10 +12,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "io/host_memory.h"
 #include "scene/gltf_draco.h"
 #include "scene/gltf_internal.h"
 #include "scene/required_extensions.h"
 #include "scene/sidecar.h"
+#include "scene/memory_check.h"
 #include "scene/texture_decode.h"
 
 namespace ddish::scene {
@@ -227,6 +229,8 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw LoadError(path, "no such file");
   if (!std::filesystem::is_regular_file(path, ec)) throw LoadError(path, "not a regular file");
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+  if (!ec) check_file_fits(path, file_bytes, io::host_memory_available());
 
   tinygltf::Model model;
   ImageCapture capture;
@@ -271,8 +275,11 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
       ctx.fail("image " + std::to_string(i) + " '" + capture.headers[i].name +
                "': " + capture.errors[i]);
   }
-  if (options.decode_textures)
+  if (options.decode_textures) {
+    check_textures_fit(path, decode_textures(capture.images, false, 1, path),
+                       io::host_memory_available());
     scene.textures = decode_textures(capture.images, true, options.decode_threads, path);
+  }
   else
     scene.textures = std::move(capture.headers);
   gltf::load_materials(ctx, scene);
