@@ -17,7 +17,8 @@ XR_RUNTIME_JSON=$build/xr_runtime/ddish_test_runtime.json DDISH_XR_SCRIPT=$out/s
 python3 - "$out/t.json" "$scene" "$w" "$h" <<'PY'
 import json, statistics, sys
 t = json.load(open(sys.argv[1]))
-frames, xr = t["frames"][1:], t["xr"][1:]
+frames = t["frames"][1:]
+xr = [f["xr"] for f in frames]
 def mean(f): return statistics.mean(f(x) for x in frames)
 st = lambda x, n: x["stages_ms"].get(n, 0.0)
 raster = lambda x: sum(st(x, n) for n in ("raster_record", "shadow_gpu", "forward_gpu", "tonemap_gpu", "raster_wait", "readback"))

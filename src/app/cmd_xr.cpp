@@ -79,8 +79,7 @@ void check(const XrArgs& a) {
 
 struct XrRun {
   FrameLoopResult result;
-  std::vector<XrFrameRecord> records;
-  nlohmann::ordered_json records_json;
+  XrFrameTally tally;
   bool lost = false;
   std::uint32_t xr_messages = 0;
   bool validation = false;
@@ -164,8 +163,8 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
     };
     run.result = loop.run(options, sink, [&](const FrameReport& r) {
       if (r.warmup && r.warmup->rounds > 0) std::fprintf(stderr, "xr: %s\n", describe_warmup(*r.warmup, a.warmup).c_str());
-      if (timings) timings->add(*r.timings, r.counts);
-      const XrFrameRecord& x = frames.records().back();
+      const XrFrameRecord& x = frames.last();
+      if (timings) timings->add(*r.timings, r.counts, {{"xr", xr_record_json(x)}});
       std::fprintf(stderr,
                    "frame %d: probes %.1f ms (%u traced at %u samples), raster %.1f ms, frame %.1f ms of period "
                    "%.2f ms (budget %.2f ms), pose to submit %.1f ms, waited %.1f ms%s\n",
@@ -175,8 +174,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
     });
     if (!session.lost()) frames.finish();
     run.lost = session.lost();
-    run.records = frames.records();
-    run.records_json = frames.records_json();
+    run.tally = frames.tally();
     run.states = session.states();
     gpu.device().wait_idle();
   }  // session, renderer, device, Vulkan instance: gone before the OpenXR instance
@@ -200,17 +198,13 @@ int run_xr(const XrArgs& a) {
   std::optional<TimingsFile> timings;
   const XrRun run = run_session(a, s, placement, scene_identity(geometry, placement.grid, a.probe.sh_order), timings);
 
-  const std::size_t n = run.records.size();
-  const auto within = std::count_if(run.records.begin(), run.records.end(), [](const XrFrameRecord& r) { return r.within_period(); });
-  std::vector<double> latency;
-  for (const XrFrameRecord& r : run.records) latency.push_back(r.pose_to_submit_ms);
-  std::sort(latency.begin(), latency.end());
   std::string states;
   for (const std::string& st : run.states) states += (states.empty() ? "" : " ") + st;
   std::fprintf(stderr, "xr: %zu frames rendered, %zu within the display period; pose to submit median %.1f ms; session %s\n",
-               n, static_cast<std::size_t>(within), latency.empty() ? 0.0 : latency[latency.size() / 2], states.c_str());
+               static_cast<std::size_t>(run.tally.rendered), static_cast<std::size_t>(run.tally.within_period),
+               run.tally.median_latency_ms(), states.c_str());
   if (timings) {
-    timings->finish({{"xr", run.records_json}});
+    timings->finish();
     std::printf("wrote %s\n", a.timings.c_str());
   }
   int code = 0;
@@ -224,7 +218,7 @@ int run_xr(const XrArgs& a) {
     }
   }
   if (run.lost) {
-    std::fprintf(stderr, "ddish: error: xr: the runtime lost the session (LOSS_PENDING) after %zu frames\n", n);
+    std::fprintf(stderr, "ddish: error: xr: the runtime lost the session (LOSS_PENDING) after %d frames\n", run.tally.rendered);
     return 1;
   }
   if (run.result.stopped) return interrupted_exit_code(stop_signal());

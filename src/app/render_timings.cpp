@@ -72,9 +72,9 @@ TimingsFile::TimingsFile(const std::filesystem::path& path, const display::ViewS
   file_.write(",\n  \"frames\": [");
 }
 
-void TimingsFile::add(const metrics::FrameTimings& t, const FrameCounts& c) {
+void TimingsFile::add(const metrics::FrameTimings& t, const FrameCounts& c, nlohmann::ordered_json extra) {
   flush_held();
-  held_ = Held{t, c};
+  held_ = Held{t, c, std::move(extra)};
 }
 
 metrics::FrameTimings* TimingsFile::last() { return held_ ? &held_->timings : nullptr; }
@@ -83,22 +83,18 @@ void TimingsFile::flush_held() {
   if (!held_) return;
   summary_.add(held_->timings);
   file_.write(frames_ == 0 ? "\n    " : ",\n    ");
-  file_.write(frame_record_json(held_->timings, held_->counts).dump());
+  nlohmann::ordered_json record = frame_record_json(held_->timings, held_->counts);
+  if (held_->extra.is_object())
+    for (const auto& [key, value] : held_->extra.items()) record[key] = value;
+  file_.write(record.dump());
   ++frames_;
   held_.reset();
 }
 
-void TimingsFile::finish(const nlohmann::ordered_json& extra) {
+void TimingsFile::finish() {
   flush_held();
   std::string tail = frames_ == 0 ? "],\n" : "\n  ],\n";
   tail += "  \"summary\": " + summary_.to_json().dump();
-  if (extra.is_object())
-    for (const auto& [key, value] : extra.items()) {
-      tail += ",\n  ";
-      tail += nlohmann::ordered_json(key).dump();
-      tail += ": ";
-      tail += value.dump();
-    }
   tail += "\n}\n";
   file_.write(tail);
   file_.commit();

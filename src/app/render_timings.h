@@ -50,16 +50,17 @@ class TimingsFile {
 
   // A frame's record. The newest one is held back until the next (or finish()), so that a stage
   // measured after the loop (the output writer's drain) can still be added to it through last().
-  void add(const metrics::FrameTimings& t, const FrameCounts& c);
+  // `extra`'s members (OpenXR's record of the frame) join the frame's record.
+  void add(const metrics::FrameTimings& t, const FrameCounts& c, nlohmann::ordered_json extra = {});
   metrics::FrameTimings* last();  // the held frame, nullptr before the first
-  // Writes the held frame, the summary and `extra`'s members (OpenXR's records) and renames the
-  // file into place.
-  void finish(const nlohmann::ordered_json& extra = {});
+  // Writes the held frame and the summary, and renames the file into place.
+  void finish();
 
  private:
   struct Held {
     metrics::FrameTimings timings;
     FrameCounts counts;
+    nlohmann::ordered_json extra;
   };
   void flush_held();
 

@@ -1,5 +1,6 @@
 #include "app/xr_frames.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <thread>
@@ -54,7 +55,7 @@ FrameStart XrFrames::pace(int) {
     r.budget_ms = fixed_budget_ms_.value_or(period_ms);
     r.skipped_before = skipped_;
     skipped_ = 0;
-    records_.push_back(r);
+    last_ = r;
     FrameStart start;
     if (!fixed_budget_ms_) start.budget_ms = period_ms;
     return start;
@@ -87,10 +88,11 @@ void XrFrames::submit(int frame) {
   for (int e = 0; e < 2; ++e) session_.eye(e).release();
   session_.end_frame(*pending_, true);
   const auto now = clock::now();
-  XrFrameRecord& r = records_.back();
+  XrFrameRecord& r = *last_;
   r.frame = frame;
   r.frame_ms = ms_between(pending_->waited, now);
   r.pose_to_submit_ms = ms_between(pending_->located, now);
+  tally_.add(r);
   pending_.reset();
 }
 
@@ -110,18 +112,39 @@ void XrFrames::finish() {
   }
 }
 
-nlohmann::ordered_json XrFrames::records_json() const {
-  nlohmann::ordered_json frames = nlohmann::ordered_json::array();
-  for (const XrFrameRecord& r : records_)
-    frames.push_back({{"frame", r.frame},
-                      {"predicted_display_period_ms", r.period_ms},
-                      {"wait_ms", r.wait_ms},
-                      {"budget_ms", r.budget_ms},
-                      {"frame_ms", r.frame_ms},
-                      {"pose_to_submit_ms", r.pose_to_submit_ms},
-                      {"within_period", r.within_period()},
-                      {"skipped_before", r.skipped_before}});
-  return frames;
+const XrFrameRecord& XrFrames::last() const {
+  if (!last_) throw std::logic_error("xr: no frame rendered yet");
+  return *last_;
+}
+
+nlohmann::ordered_json xr_record_json(const XrFrameRecord& r) {
+  return {{"frame", r.frame},
+          {"predicted_display_period_ms", r.period_ms},
+          {"wait_ms", r.wait_ms},
+          {"budget_ms", r.budget_ms},
+          {"frame_ms", r.frame_ms},
+          {"pose_to_submit_ms", r.pose_to_submit_ms},
+          {"within_period", r.within_period()},
+          {"skipped_before", r.skipped_before}};
+}
+
+void XrFrameTally::add(const XrFrameRecord& r) {
+  ++rendered;
+  if (r.within_period()) ++within_period;
+  const double bin = std::max(0.0, r.pose_to_submit_ms) / kBinMs;
+  latency_bins[std::min<std::size_t>(latency_bins.size() - 1, static_cast<std::size_t>(bin))] += 1;
+}
+
+double XrFrameTally::median_latency_ms() const {
+  if (rendered == 0) return 0.0;
+  // The upper median, as the sorted list's element rendered / 2 was before.
+  const std::uint64_t rank = static_cast<std::uint64_t>(rendered) / 2;
+  std::uint64_t seen = 0;
+  for (std::size_t b = 0; b < latency_bins.size(); ++b) {
+    seen += latency_bins[b];
+    if (seen > rank) return (static_cast<double>(b) + 0.5) * kBinMs;
+  }
+  return static_cast<double>(latency_bins.size()) * kBinMs;
 }
 
 }  // namespace ddish::app

@@ -13,6 +13,8 @@
 // return to xrEndFrame's), and the pose-to-submit latency (xrLocateViews' return to xrEndFrame's).
 #pragma once
 
+#include <array>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -35,6 +37,20 @@ struct XrFrameRecord {
   int skipped_before = 0;       // frames not rendered (shouldRender false) since the last one
   bool within_period() const { return frame_ms <= period_ms; }
 };
+// A record as the --timings file holds it (the "xr" member of each frame).
+nlohmann::ordered_json xr_record_json(const XrFrameRecord& r);
+
+// What the end-of-run summary needs of every rendered frame, in a fixed size however long the
+// session: a headset runs for hours at 90 Hz, so no per-frame record is kept.
+struct XrFrameTally {
+  static constexpr double kBinMs = 0.1;  // the median's resolution
+  int rendered = 0;
+  int within_period = 0;
+  // Pose-to-submit latencies in kBinMs bins up to 1 s; the last bin holds everything longer.
+  std::array<std::uint32_t, 10001> latency_bins{};
+  void add(const XrFrameRecord& r);
+  double median_latency_ms() const;  // the bin's centre; 0 before the first frame
+};
 
 class XrFrames {
  public:
@@ -50,8 +66,9 @@ class XrFrames {
   // (ending frames without layers meanwhile). Throws std::runtime_error when it never ends.
   void finish();
 
-  const std::vector<XrFrameRecord>& records() const { return records_; }
-  nlohmann::ordered_json records_json() const;
+  // The newest rendered frame's record (complete after submit()); throws before the first.
+  const XrFrameRecord& last() const;
+  const XrFrameTally& tally() const { return tally_; }
   int skipped() const { return skipped_total_; }
 
  private:
@@ -59,7 +76,8 @@ class XrFrames {
   display::BaseCamera origin_;
   std::optional<double> fixed_budget_ms_;
   std::optional<xr::Frame> pending_;
-  std::vector<XrFrameRecord> records_;
+  std::optional<XrFrameRecord> last_;
+  XrFrameTally tally_;
   int skipped_ = 0;
   int skipped_total_ = 0;
 };
