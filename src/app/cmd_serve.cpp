@@ -46,6 +46,7 @@
 #include "app/probe_source.h"
 #include "app/scene_identity.h"
 #include "app/schedule_options.h"
+#include "io/atomic_file.h"
 #include "net/curve_keys.h"
 #include "net/bricks.h"
 #include "net/endpoint.h"
@@ -150,13 +151,12 @@ void write_timings(const std::string& path, const std::vector<TickRecord>& ticks
                     {"bytes_per_second", seconds > 0.0 ? double(server.bytes_published()) / seconds : 0.0},
                     {"snapshots_sent", server.snapshots_sent()},
                     {"malformed_requests", server.malformed_requests()}};
-  std::ofstream out(path);
-  out << doc.dump(2) << '\n';
-  if (!out) throw std::runtime_error("cannot write " + path);
+  io::write_file_atomically(path, doc.dump(2) + "\n");
 }
 
 int run_serve(const ServeArgs& a) {
   check(a);
+  if (!a.timings.empty()) io::check_writable_file(a.timings);  // before the scene loads
   scene::Scene s = scene::load_scene(a.scene);
   const std::uint64_t geometry = geometry_identity(s);
   s.pose(a.time);

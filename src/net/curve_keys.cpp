@@ -1,12 +1,18 @@
 #include "net/curve_keys.h"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
 
 #include <zmq.h>
+
+#include "io/atomic_file.h"
 
 namespace ddish::net {
 namespace {
@@ -22,12 +28,20 @@ std::string read_key_text(const std::filesystem::path& file) {
   return text;
 }
 
+// Written whole or not at all (io/atomic_file.h). A secret key's file is created owner-only
+// before a byte of the key is in it, so it is never readable by others, not even for a moment.
 void write_text(const std::filesystem::path& file, const std::string& text, bool secret) {
-  std::ofstream out(file, std::ios::trunc);
-  out << text << '\n';
-  if (!out) throw std::runtime_error("cannot write " + file.string());
-  out.close();
-  if (secret) ::chmod(file.c_str(), 0600);
+  io::write_atomically(file, [&](const std::filesystem::path& temporary) {
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, secret ? 0600 : 0644);
+    if (fd < 0) throw std::runtime_error(std::strerror(errno));
+    if (secret) ::fchmod(fd, 0600);  // whatever the umask
+    const std::string line = text + '\n';
+    const ssize_t n = ::write(fd, line.data(), line.size());
+    const int write_errno = errno;
+    ::close(fd);
+    if (n != static_cast<ssize_t>(line.size()))
+      throw std::runtime_error(n < 0 ? std::strerror(write_errno) : "short write");
+  });
 }
 
 }  // namespace

@@ -266,6 +266,15 @@ TEST(Transport, KeyFilesRoundTrip) {
   EXPECT_EQ(read_secret_key(dir / "client.key").public_z85, k.public_z85);
   EXPECT_EQ(read_public_key(dir / "client.pub"), k.public_z85);
   EXPECT_EQ(read_allowed_keys(dir), std::set<std::string>{k.public_z85});
+  // The secret is owner-only from its creation, also when it replaces a world-readable file,
+  // and the writes leave no temporary behind: the two key files only.
+  namespace fs = std::filesystem;
+  const fs::perms owner_only = fs::perms::owner_read | fs::perms::owner_write;
+  EXPECT_EQ(fs::status(dir / "client.key").permissions() & fs::perms::all, owner_only);
+  fs::permissions(dir / "client.key", fs::perms::others_read, fs::perm_options::add);
+  write_curve_keys(dir, "client", generate_curve_keys());
+  EXPECT_EQ(fs::status(dir / "client.key").permissions() & fs::perms::all, owner_only);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2);
   { std::ofstream(dir / "bad.pub") << "not a key\n"; }
   EXPECT_THROW(read_allowed_keys(dir), std::runtime_error);
   std::filesystem::remove_all(dir);

@@ -213,7 +213,7 @@ TEST_F(XrCli, TheBudgetFollowsTheDisplayPeriod) {
 // Streamed probes: `ddish xr --connect` takes them from a `ddish serve` on loopback through the
 // same client as `ddish view` (app/probe_setup.h), and its frames carry the stream's record.
 TEST_F(XrCli, ConnectTakesTheProbesOfAServer) {
-  const std::string bind = "tcp://127.0.0.1:" + std::to_string(58000 + int(getpid() % 3000) * 2);
+  const std::string bind = "tcp://127.0.0.1:" + std::to_string(61000 + int(getpid() % 2000) * 2);  // above the ephemeral ports (32768-60999)
   const std::string serve_log = (dir_ / "serve.log").string();
   const std::string start = cli::quote(DDISH_EXE) + " serve " + cli::cornell() + " --bind " + bind +
                             " --grid 4,4,4 --probe-samples 32 --bounces 4 --frames 2 --seconds 30 >/dev/null 2>" +
