@@ -579,6 +579,9 @@ Action make_view(CLI::App& root) {
                   "probe counts X,Y,Z, or auto, as the server's (default: sidecar counts, else automatic)");
   cmd->add_option("--probe-spacing", a->probe.spacing, "as the server's --probe-spacing");
   cmd->add_option("--sh-order", a->probe.sh_order, "as the server's --sh-order")->capture_default_str();
+  // The sky or environment map the view draws behind the scene: give the server's (serve --sky,
+  // --environment), so that the background matches the light in the probes.
+  add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   return [a]() { return run_render(*a); };
 }
 

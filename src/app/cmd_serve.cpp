@@ -42,6 +42,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/lighting_options.h"
 #include "app/probe_options.h"
 #include "app/probe_source.h"
 #include "app/scene_identity.h"
@@ -72,6 +73,7 @@ struct ServeArgs {
   bool insecure = false;
   ProbeArgs probe;
   ScheduleArgs schedule;
+  LightingArgs lighting;  // --sky, --environment: the light the probes are traced in
   double fps = 30.0;
   double time = 0.0;
   int frames = 0;
@@ -91,6 +93,7 @@ struct ServeArgs {
 void check(const ServeArgs& a) {
   check_probe_options(a.probe);
   check_schedule_options(a.schedule);
+  sky_radiance(a.lighting);  // a malformed --sky or a missing --environment file, before the load
   if (!(a.fps > 0.0) || a.fps > 1000.0) throw std::invalid_argument("--fps must be in (0, 1000]");
   if (a.frames < 0 || a.seconds < 0.0) throw std::invalid_argument("--frames and --seconds must be >= 0");
   if (!net::parse_encoding(a.encoding))
@@ -159,6 +162,8 @@ int run_serve(const ServeArgs& a) {
   if (!a.timings.empty()) io::check_writable_file(a.timings);  // before the scene loads
   scene::Scene s = scene::load_scene(a.scene);
   const std::uint64_t geometry = geometry_identity(s);
+  const std::string environment = apply_lighting(s, a.lighting);
+  std::fprintf(stderr, "serve: %s\n", environment.c_str());
   s.pose(a.time);
   const Placement placement = place_probes(a.probe, s);
   const std::uint64_t identity = scene_identity(geometry, placement.grid, a.probe.sh_order);
@@ -334,6 +339,7 @@ Action make_serve(CLI::App& root) {
                   "serve share I of N of the probe bricks (4x4x4 probes each; brick b when b mod N == I); "
                   "N servers of the same scene and grid serve the whole volume")
       ->capture_default_str();
+  add_lighting_options(*cmd, a->lighting, /*exposure=*/false);
   cmd->add_option("--timings", a->timings, "write a per-tick record as JSON here");
   cmd->add_option("--curve-secret", a->curve_secret, "the server's secret key (ddish keys): CurveZMQ on")
       ->check(CLI::ExistingFile);

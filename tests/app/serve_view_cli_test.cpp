@@ -82,6 +82,36 @@ TEST_F(ServeView, ViewEqualsInProcessRender) {
   }
 }
 
+// The server traces its probes in the light it is given (--sky, as render's): a view of an open
+// scene served under a bright sky equals the in-process render under that sky, and not the one
+// under the default sky.
+TEST_F(ServeView, ServerTracesUnderItsSky) {
+  const std::string scene = scene_path("open_sphere.gltf");
+  const std::string sky = "--sky 2,1.5,1";
+  for (const std::string& which : {std::string("bright"), std::string("default")})
+    ASSERT_EQ(run("render " + quote(scene) + " " + kProbeFlags + " " + kImage + " --frames 3 --warmup-ms 0 " +
+                  (which == "bright" ? sky : "") + " --out " + quote((dir_ / which).string())).code, 0);
+  const std::string bind = address(7);
+  Process server(serve_args(bind, {"--frames", "3", "--seconds", "20", "--encoding", "fp16", "--delta-threshold", "0",
+                                   "--sky", "2,1.5,1"}, "open_sphere.gltf"),
+                 dir_ / "serve");
+  ASSERT_TRUE(wait_for(dir_ / "serve", "update 3:", 15.0));
+  EXPECT_NE(cli::slurp(dir_ / "serve").find("serve: environment (2, 1.5, 1) radiance: --sky"), std::string::npos)
+      << cli::slurp(dir_ / "serve");
+  const std::string out = (dir_ / "view").string();
+  const cli::Result v = run("view " + quote(scene) + " --grid 4,4,4 " + kImage + " " + sky + " --connect " + bind +
+                            " --out " + quote(out));
+  ASSERT_EQ(v.code, 0) << v.err;
+  const auto psnr_against = [&](const std::string& which) {
+    const cli::Result c = run("compare " + quote(out + "/frame_0000.exr") + " " +
+                              quote((dir_ / which / "frame_0002.exr").string()));
+    EXPECT_EQ(c.code, 0) << c.err;
+    return psnr_of(c);
+  };
+  EXPECT_GE(psnr_against("bright"), 1e9);
+  EXPECT_LT(psnr_against("default"), 60.0);
+}
+
 TEST_F(ServeView, LateJoinerRendersEveryProbeInItsFirstFrame) {
   const std::string bind = address(2);
   Process server({"serve", scene_path("cornell_box.gltf"), "--bind", bind, "--grid", "4,4,4",
@@ -232,6 +262,7 @@ TEST_F(ServeView, BadOptionsExitTwoWithOneLine) {
         "serve " + scene + " --encoding fp8 --seconds 1",
         "serve " + scene + " --delta-threshold -1 --seconds 1",
         "serve " + scene + " --client-budget-ms -2 --seconds 1",
+        "serve " + scene + " --sky 1,2 --seconds 1",
         "view " + scene + " --connect nowhere",
         "view " + scene + " --connect tcp://127.0.0.1:5570 --stale-ms 0",
         "serve " + scene + " --curve-secret " + scene + " --seconds 1",
