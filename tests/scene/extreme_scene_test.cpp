@@ -43,15 +43,6 @@ std::string write_with(const GltfBuilder& b, const TempDir& dir, const std::stri
   return path;
 }
 
-std::string load_message(const std::string& path) {
-  try {
-    scene::load_scene(path);
-  } catch (const scene::LoadError& e) {
-    return e.what();
-  }
-  return "(loaded without error)";
-}
-
 GltfBuilder quad_with_light(double intensity) {
   GltfBuilder b;
   b.add_node({{"mesh", b.add_quad_mesh()}});
@@ -126,14 +117,14 @@ TEST(ExtremeScene, NonFiniteLightIntensityIsRejected) {
   for (const char* bad : {"1e400", "-1e400"}) {
     TempDir dir("extreme_light_json");
     const std::string path = write_with(quad_with_light(12345.5), dir, "12345.5", bad);
-    const std::string msg = load_message(path);
+    const std::string msg = test::load_message(path);
     EXPECT_EQ(msg.rfind(path, 0), 0u) << msg;
     EXPECT_NE(msg.find("number overflow"), std::string::npos) << bad << ": " << msg;
   }
   for (const char* bad : {"1e39", "-1e39"}) {
     TempDir dir("extreme_light");
     const std::string path = write_with(quad_with_light(12345.5), dir, "12345.5", bad);
-    const std::string msg = load_message(path);
+    const std::string msg = test::load_message(path);
     EXPECT_NE(msg.find("lamp"), std::string::npos) << bad << ": " << msg;
     EXPECT_NE(msg.find("not finite"), std::string::npos) << bad << ": " << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
@@ -156,7 +147,7 @@ TEST(ExtremeScene, NonFiniteEmissiveStrengthIsRejected) {
                          {"extensions",
                           {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4321.5}}}}}}};
   b.add_node({{"mesh", b.add_quad_mesh(true, 0)}});
-  const std::string msg = load_message(write_with(b, dir, "4321.5", "1e39"));
+  const std::string msg = test::load_message(write_with(b, dir, "4321.5", "1e39"));
   EXPECT_NE(msg.find("glow"), std::string::npos) << msg;
   EXPECT_NE(msg.find("emissiveStrength is not finite"), std::string::npos) << msg;
   // A colour factor that overflows float is rejected too (it used to pass as a finite double).
@@ -164,7 +155,7 @@ TEST(ExtremeScene, NonFiniteEmissiveStrengthIsRejected) {
   GltfBuilder c;
   c.doc["materials"] = {{{"name", "hot"}, {"emissiveFactor", {1.0, 765.25, 1.0}}}};
   c.add_node({{"mesh", c.add_quad_mesh(true, 0)}});
-  const std::string msg2 = load_message(write_with(c, dir2, "765.25", "1e39"));
+  const std::string msg2 = test::load_message(write_with(c, dir2, "765.25", "1e39"));
   EXPECT_NE(msg2.find("emissiveFactor is not finite"), std::string::npos) << msg2;
 }
 
@@ -172,7 +163,7 @@ TEST(ExtremeScene, NodeTranslationBeyondFloatIsRejected) {
   TempDir dir("extreme_node");
   GltfBuilder b;
   b.add_node({{"name", "far"}, {"mesh", b.add_quad_mesh()}, {"translation", {0.0, 0.0, 98765.5}}});
-  const std::string msg = load_message(write_with(b, dir, "98765.5", "1e39"));
+  const std::string msg = test::load_message(write_with(b, dir, "98765.5", "1e39"));
   EXPECT_NE(msg.find("far"), std::string::npos) << msg;
   EXPECT_NE(msg.find("not finite"), std::string::npos) << msg;
 }

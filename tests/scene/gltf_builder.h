@@ -12,6 +12,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/gltf_loader.h"
+#include "scene/load_error.h"
+
 namespace ddish::test {
 
 enum class BufferMode { External, DataUri, Glb };
@@ -31,6 +34,16 @@ struct TempDir {
   }
   std::string file(const std::string& name) const { return (path / name).string(); }
 };
+
+// The LoadError message of loading `path`, or "(loaded)" when it loads.
+inline std::string load_message(const std::string& path) {
+  try {
+    scene::load_scene(path);
+  } catch (const scene::LoadError& e) {
+    return e.what();
+  }
+  return "(loaded)";
+}
 
 inline void write_file(const std::string& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;

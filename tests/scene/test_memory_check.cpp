@@ -21,15 +21,6 @@ namespace {
 
 constexpr std::uint64_t kGiB = std::uint64_t{1} << 30;
 
-std::string load_error(const std::string& path) {
-  try {
-    scene::load_scene(path);
-  } catch (const scene::LoadError& e) {
-    return e.what();
-  }
-  return "(loaded)";
-}
-
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // A PNG signature and IHDR chunk only: 16384 x 16384 RGBA8, the largest image stb_image
@@ -70,7 +61,7 @@ TEST(MemoryCheck, TexturesLargerThanMemoryAreRefusedBeforeDecoding) {
   b.add_node({{"mesh", 0}});
   for (int i = 0; i < 1000; ++i) b.doc["images"].push_back({{"uri", "huge.png"}});
   const std::string path = b.write(dir.path.string(), "t.gltf", BufferMode::External);
-  const std::string msg = load_error(path);
+  const std::string msg = test::load_message(path);
   EXPECT_TRUE(contains(msg, "its 1000 images decode to 1001.0 GiB")) << msg;
   EXPECT_TRUE(contains(msg, "16384x16384")) << msg;
   EXPECT_TRUE(contains(msg, "of memory available")) << msg;
@@ -91,6 +82,6 @@ TEST(MemoryCheck, AFileLargerThanMemoryIsRefusedBeforeReading) {
   const bool sparse = ::ftruncate(fd, off_t(4096) * off_t(kGiB)) == 0;
   ::close(fd);
   if (!sparse) GTEST_SKIP() << "the temp folder's file system has no 4 TiB sparse files";
-  const std::string msg = load_error(path);
+  const std::string msg = test::load_message(path);
   EXPECT_TRUE(contains(msg, "the file is 4096.0 GiB and reading it needs 8192.0 GiB")) << msg;
 }

@@ -37,15 +37,6 @@ test::GltfBuilder draco_triangle() {
   return b;
 }
 
-std::string load_message(const std::string& path) {
-  try {
-    scene::load_scene(path);
-  } catch (const scene::LoadError& e) {
-    return e.what();
-  }
-  return "(loaded)";
-}
-
 }  // namespace
 
 TEST(RequiredExtensions, CorruptDracoDataIsOneLineNamingThePrimitive) {
@@ -55,7 +46,7 @@ TEST(RequiredExtensions, CorruptDracoDataIsOneLineNamingThePrimitive) {
         dir.path.string(), mode == test::BufferMode::Glb ? "d.glb" : "d.gltf", mode);
     EXPECT_EQ(scene::required_extensions(path),
               std::vector<std::string>{"KHR_draco_mesh_compression"});
-    const std::string msg = load_message(path);
+    const std::string msg = test::load_message(path);
     EXPECT_EQ(msg.rfind(path, 0), 0u) << msg;
     EXPECT_NE(msg.find("mesh 0 primitive 0: KHR_draco_mesh_compression (a required extension): "
                        "the Draco data cannot be decoded"),
@@ -70,7 +61,7 @@ TEST(RequiredExtensions, OptionalDracoWithoutFallbackDataIsAnErrorToo) {
   test::TempDir dir("draco_optional");
   test::GltfBuilder b = draco_triangle();
   b.doc.erase("extensionsRequired");
-  const std::string msg = load_message(b.write(dir.path.string(), "o.gltf", test::BufferMode::External));
+  const std::string msg = test::load_message(b.write(dir.path.string(), "o.gltf", test::BufferMode::External));
   EXPECT_NE(msg.find("primitive 0: KHR_draco_mesh_compression: the Draco data cannot be decoded"),
             std::string::npos)
       << msg;
