@@ -101,6 +101,10 @@ nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
                                  : json{{"min", vec(f.bounds.min)}, {"max", vec(f.bounds.max)}};
   j["environment"] = vec(f.environment);
   j["environment_source"] = scene::environment_source_name(env.source);
+  if (env.source == scene::EnvironmentSource::SidecarMap)
+    j["environment_map"] = {{"file", s.sidecar.environment_map->file},
+                            {"rotation_deg", s.sidecar.environment_map->rotation_deg},
+                            {"intensity", s.sidecar.environment_map->intensity}};
   j["light_units"] = s.sidecar.light_units == scene::LightUnits::Radiometric ? "radiometric"
                                                                               : "photometric";
   json grid = json::object();
@@ -168,8 +172,14 @@ void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scen
     fmt::print("  bounds      ({:.3f}, {:.3f}, {:.3f}) .. ({:.3f}, {:.3f}, {:.3f})\n",
                f.bounds.min.x, f.bounds.min.y, f.bounds.min.z, f.bounds.max.x, f.bounds.max.y,
                f.bounds.max.z);
-  fmt::print("  environment ({:g}, {:g}, {:g}) radiance: {}\n", f.environment.r, f.environment.g,
-             f.environment.b, scene::environment_source_name(env.source));
+  if (env.source == scene::EnvironmentSource::SidecarMap) {
+    const scene::SidecarEnvironmentMap& m = *s.sidecar.environment_map;
+    fmt::print("  environment map {} (rotation {:g} deg, intensity {:g}): sidecar\n", m.file, m.rotation_deg,
+               m.intensity);
+  } else {
+    fmt::print("  environment ({:g}, {:g}, {:g}) radiance: {}\n", f.environment.r, f.environment.g,
+               f.environment.b, scene::environment_source_name(env.source));
+  }
   if (s.sidecar.probe_counts) {
     const glm::ivec3& c = *s.sidecar.probe_counts;
     fmt::print("  probe grid  {} x {} x {} = {} probes{}\n", c.x, c.y, c.z, c.x * c.y * c.z,

@@ -14,6 +14,7 @@
 #include "metrics/image_io.h"
 #include "scene/environment_choice.h"
 #include "scene/environment_map.h"
+#include "scene/sidecar.h"
 #include "scene/scene.h"
 
 namespace ddish::app {
@@ -90,30 +91,49 @@ std::optional<glm::vec3> sky_radiance(const LightingArgs& args) {
   return parse_sky(args.sky);
 }
 
-std::shared_ptr<const scene::EnvironmentMap> load_environment(const LightingArgs& args) {
-  if (args.environment.empty()) return nullptr;
-  check_environment_file(args.environment);
+namespace {
+
+// `what` names where the file was asked for in the error: "--environment" or the sidecar.
+std::shared_ptr<const scene::EnvironmentMap> read_environment(const std::string& file, float rotation_deg,
+                                                              float intensity, const std::string& what) {
   metrics::Image image;
   try {
-    image = metrics::read_image(args.environment);
+    image = metrics::read_image(file);
   } catch (const std::exception& e) {
-    throw std::runtime_error(std::string("--environment: ") + e.what());
+    throw std::runtime_error(what + ": " + e.what());
   }
   const int w = image.width();
   const int h = image.height();
-  return std::make_shared<const scene::EnvironmentMap>(scene::make_environment_map(
-      w, h, std::move(image.pixels()), args.environment_rotation_deg, args.environment_intensity,
-      args.environment));
+  return std::make_shared<const scene::EnvironmentMap>(
+      scene::make_environment_map(w, h, std::move(image.pixels()), rotation_deg, intensity, file));
+}
+
+}  // namespace
+
+std::shared_ptr<const scene::EnvironmentMap> load_environment(const LightingArgs& args) {
+  if (args.environment.empty()) return nullptr;
+  check_environment_file(args.environment);
+  return read_environment(args.environment, args.environment_rotation_deg, args.environment_intensity,
+                          "--environment");
 }
 
 float exposure_scale(const LightingArgs& args) { return std::exp2(args.exposure_ev); }
 
 std::string apply_lighting(scene::Scene& s, const LightingArgs& args) {
+  // --environment, else --sky, else the sidecar's map, else the uniform choices.
   std::shared_ptr<const scene::EnvironmentMap> map = load_environment(args);
+  float rotation_deg = args.environment_rotation_deg;
+  const char* source = "--environment";
+  if (!map && args.sky.empty() && s.sidecar.environment_map) {
+    const scene::SidecarEnvironmentMap& m = *s.sidecar.environment_map;
+    map = read_environment(m.file, m.rotation_deg, m.intensity, scene::sidecar_path(s.path) + ": environment.map");
+    rotation_deg = m.rotation_deg;
+    source = "sidecar";
+  }
   if (map) {
-    const std::string line = fmt::format(
-        "environment map {} ({}x{}, rotation {:g} deg, intensity {:g}): --environment", map->source,
-        map->width, map->height, args.environment_rotation_deg, map->intensity);
+    const std::string line = fmt::format("environment map {} ({}x{}, rotation {:g} deg, intensity {:g}): {}",
+                                         map->source, map->width, map->height, rotation_deg,
+                                         map->intensity, source);
     scene::apply_environment(s, std::nullopt, std::move(map));
     return line;
   }

@@ -11,6 +11,7 @@ bool has_own_light(const Scene& scene) {
 
 EnvironmentChoice choose_environment(const Scene& scene, const std::optional<glm::vec3>& sky) {
   if (sky) return {*sky, EnvironmentSource::CommandLine};
+  if (scene.sidecar.environment_map) return {glm::vec3(0.0f), EnvironmentSource::SidecarMap};
   if (scene.sidecar.environment_given) return {scene.sidecar.environment, EnvironmentSource::Sidecar};
   if (!has_own_light(scene)) return {glm::vec3(kDefaultSkyRadiance), EnvironmentSource::DefaultSky};
   return {glm::vec3(0.0f), EnvironmentSource::None};
@@ -31,6 +32,8 @@ const char* environment_source_name(EnvironmentSource source) {
       return "--environment";
     case EnvironmentSource::CommandLine:
       return "--sky";
+    case EnvironmentSource::SidecarMap:
+      return "sidecar map";
     case EnvironmentSource::Sidecar:
       return "sidecar";
     case EnvironmentSource::DefaultSky:

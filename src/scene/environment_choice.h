@@ -20,7 +20,7 @@ namespace ddish::scene {
 // curve, which keeps highlights off the clip.
 inline constexpr float kDefaultSkyRadiance = 1.0f;
 
-enum class EnvironmentSource { Map, CommandLine, Sidecar, DefaultSky, None };
+enum class EnvironmentSource { Map, CommandLine, SidecarMap, Sidecar, DefaultSky, None };
 
 struct EnvironmentChoice {
   glm::vec3 radiance{0.0f};  // the uniform radiance (0 with a map)
@@ -31,8 +31,9 @@ struct EnvironmentChoice {
 // instance draws.
 bool has_own_light(const Scene& scene);
 
-// sky if given, else the sidecar's environment.radiance if it has one, else the default sky when
-// the scene has no light of its own, else none (radiance 0).
+// sky if given, else the sidecar's environment.map (radiance 0: the caller loads the map, which
+// scene/ cannot read), else its environment.radiance, else the default sky when the scene has no
+// light of its own, else none (radiance 0).
 EnvironmentChoice choose_environment(const Scene& scene, const std::optional<glm::vec3>& sky);
 
 // choose_environment's radiance made the scene's environment (what every renderer reads); a
@@ -40,7 +41,7 @@ EnvironmentChoice choose_environment(const Scene& scene, const std::optional<glm
 EnvironmentChoice apply_environment(Scene& scene, const std::optional<glm::vec3>& sky,
                                     std::shared_ptr<const EnvironmentMap> map = nullptr);
 
-// "--environment", "--sky", "sidecar", "default sky (the scene has no light)", "none".
+// "--environment", "--sky", "sidecar map", "sidecar", "default sky (the scene has no light)", "none".
 const char* environment_source_name(EnvironmentSource source);
 
 }  // namespace ddish::scene

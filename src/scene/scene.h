@@ -197,10 +197,19 @@ enum class LightUnits { Photometric, Radiometric };
 // (the SI definition of the candela, at 540 THz), as KHR_lights_punctual suggests.
 inline constexpr float kLumensPerWatt = 683.0f;
 
+// The sidecar's environment.map: an equirectangular .exr or .hdr that lights the scene, as
+// --environment FILE with --environment-rotation and --environment-intensity would.
+struct SidecarEnvironmentMap {
+  std::string file;           // resolved against the sidecar's folder; exists when parsed
+  float rotation_deg = 0.0f;  // environment.rotation, about +Y
+  float intensity = 1.0f;     // environment.intensity
+};
+
 // What the sidecar NAME.ddish.json adds to a glTF file (format: ../shared/scenes/README.md).
 struct Sidecar {
   glm::vec3 environment{0.0f};               // uniform radiance of escaping rays
   bool environment_given = false;            // environment.radiance is in the sidecar
+  std::optional<SidecarEnvironmentMap> environment_map;  // environment.map
   LightUnits light_units = LightUnits::Photometric;
   std::optional<glm::ivec3> probe_counts;    // probe grid counts
   std::optional<Aabb> probe_bounds;          // probe grid bounds; default: the scene's bounds

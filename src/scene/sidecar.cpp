@@ -1,5 +1,6 @@
 #include "scene/sidecar.h"
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -36,6 +37,33 @@ const json& object_member(const json& j, const char* key, const std::string& fil
   return m;
 }
 
+// environment.map (a path relative to the sidecar), .rotation (degrees) and .intensity.
+SidecarEnvironmentMap environment_map_of(const json& env, const std::string& file) {
+  if (!env["map"].is_string() || env["map"].get<std::string>().empty())
+    throw LoadError(file, "environment.map must be the name of an .exr or .hdr file");
+  SidecarEnvironmentMap m;
+  const std::filesystem::path name = env["map"].get<std::string>();
+  m.file = (std::filesystem::path(file).parent_path() / name).lexically_normal().string();
+  std::string ext = name.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".exr" && ext != ".hdr")
+    throw LoadError(file, "environment.map must be an .exr or .hdr file, got '" + name.string() + "'");
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(m.file, ec))
+    throw LoadError(file, "environment.map: cannot read " + m.file + ": no such file");
+  const auto number = [&](const char* key, float& out) {
+    if (!env.contains(key)) return;
+    const json& v = env[key];
+    if (!v.is_number() || !std::isfinite(v.get<double>()) || !std::isfinite(v.get<float>()))
+      throw LoadError(file, std::string("environment.") + key + " must be a finite number");
+    out = v.get<float>();
+  };
+  number("rotation", m.rotation_deg);
+  number("intensity", m.intensity);
+  if (m.intensity < 0.0f) throw LoadError(file, "environment.intensity must not be negative");
+  return m;
+}
+
 }  // namespace
 
 std::string sidecar_path(const std::string& scene_path) {
@@ -55,6 +83,13 @@ Sidecar parse_sidecar(const std::string& text, const std::string& file) {
       sc.environment_given = true;
       if (glm::any(glm::lessThan(sc.environment, glm::vec3(0.0f))))
         throw LoadError(file, "environment.radiance must not be negative");
+    }
+    if (env.contains("map")) {
+      if (sc.environment_given)
+        throw LoadError(file, "environment has both a radiance and a map: give one");
+      sc.environment_map = environment_map_of(env, file);
+    } else if (env.contains("rotation") || env.contains("intensity")) {
+      throw LoadError(file, "environment.rotation and environment.intensity need an environment.map");
     }
   }
   if (j.contains("probe_grid")) {

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
@@ -183,3 +185,69 @@ TEST_F(EnvironmentCli, BadMapsAreOneClearErrorLine) {
 }
 
 }  // namespace
+
+// The sidecar's environment.map (with rotation and intensity) lights a scene as the same map on
+// the command line does: the same images, bit for bit, from render and reference. --sky and
+// --environment on the command line win over it; `info` names it; a malformed one is one line.
+TEST_F(EnvironmentCli, SidecarMapLightsAsTheCommandLineMapDoes) {
+  const fs::path src = fs::path(DDISH_SOURCE_DIR) / "scenes";
+  fs::create_directories(dir_ / "scene" / "maps");
+  fs::copy_file(src / "environment_plane.gltf", dir_ / "scene" / "environment_plane.gltf");
+  fs::copy_file(src / "environment_plane.bin", dir_ / "scene" / "environment_plane.bin");
+  const glm::vec3 a(0.9f, 0.1f, 0.1f), b(0.1f, 0.2f, 0.9f);
+  ddish::metrics::write_exr(dir_ / "scene" / "maps" / "halves.exr", equirect(32, [&](int x, int y) {
+                              return y < 16 ? (x < 32 ? a : b) : glm::vec3(0.1f);
+                            }));
+  const auto sidecar = [&](const std::string& text) {
+    std::ofstream(dir_ / "scene" / "environment_plane.ddish.json") << text;
+  };
+  sidecar(R"({"environment": {"map": "maps/halves.exr", "rotation": 90, "intensity": 1.5}})");
+  const std::string copy = quote((dir_ / "scene" / "environment_plane.gltf").string());
+  const std::string flags =
+      " --environment " + path("scene/maps/halves.exr") + " --environment-rotation 90 --environment-intensity 1.5";
+
+  Result side = run("render " + copy + kSize + kRender + " --out " + path("side"));
+  ASSERT_EQ(side.code, 0) << side.err;
+  EXPECT_NE(side.err.find("(64x32, rotation 90 deg, intensity 1.5): sidecar"), std::string::npos) << side.err;
+  Result cli = run("render " + kPlane + kSize + kRender + flags + " --out " + path("cli"));
+  ASSERT_EQ(cli.code, 0) << cli.err;
+  Result side_ref = run("reference " + copy + kSize + " --spp 4 --out " + path("side_ref"));
+  ASSERT_EQ(side_ref.code, 0) << side_ref.err;
+  Result cli_ref = run("reference " + kPlane + kSize + " --spp 4" + flags + " --out " + path("cli_ref"));
+  ASSERT_EQ(cli_ref.code, 0) << cli_ref.err;
+  for (const auto& [x, y] : {std::pair<const char*, const char*>{"side/frame_0000.exr", "cli/frame_0000.exr"},
+                             {"side_ref/reference.exr", "cli_ref/reference.exr"}}) {
+    const Image p = image(x), q = image(y);
+    ASSERT_EQ(p.pixels().size(), q.pixels().size());
+    EXPECT_TRUE(p.pixels() == q.pixels()) << x << " differs from " << y;
+  }
+  // Turned 90 degrees the view sees the map's +X half: B, brighter by the intensity.
+  const glm::dvec3 sky = mean(image("side/frame_0000.exr"), 0, 32, 0, kSkyRows);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(sky[c], 1.5 * b[c], 2e-3) << c;
+
+  Result sky_wins = run("render " + copy + kSize + kRender + " --sky 0.5,0.5,0.5 --out " + path("sky"));
+  ASSERT_EQ(sky_wins.code, 0) << sky_wins.err;
+  EXPECT_NE(sky_wins.err.find("environment (0.5, 0.5, 0.5) radiance: --sky"), std::string::npos) << sky_wins.err;
+  Result info = run("info " + copy);
+  ASSERT_EQ(info.code, 0) << info.err;
+  EXPECT_NE(info.out.find("maps/halves.exr (rotation 90 deg, intensity 1.5): sidecar"), std::string::npos)
+      << info.out;
+
+  const std::string file = (dir_ / "scene" / "environment_plane.ddish.json").string();
+  for (const auto& [text, line] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"environment": {"map": "maps/none.exr"}})",
+            "environment.map: cannot read " + (dir_ / "scene" / "maps" / "none.exr").string() + ": no such file"},
+           {R"({"environment": {"map": "maps/halves.png"}})",
+            "environment.map must be an .exr or .hdr file, got 'maps/halves.png'"},
+           {R"({"environment": {"map": "maps/halves.exr", "radiance": [1, 1, 1]}})",
+            "environment has both a radiance and a map: give one"},
+           {R"({"environment": {"map": "maps/halves.exr", "intensity": -1}})",
+            "environment.intensity must not be negative"},
+           {R"({"environment": {"rotation": 10}})",
+            "environment.rotation and environment.intensity need an environment.map"}}) {
+    sidecar(text);
+    Result r = run("info " + copy);
+    EXPECT_EQ(r.code, 2) << text;
+    EXPECT_EQ(r.err, "ddish: error: " + file + ": " + line + "\n") << text;
+  }
+}
