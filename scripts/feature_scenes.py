@@ -293,6 +293,44 @@ def environment_plane(out_dir):
     g.write(out_dir, None)
 
 
+# blend_shadow: a BLEND panel between a sun and a Lambertian floor.
+BLEND_SHADOW_ALBEDO = 0.5
+BLEND_SHADOW_ALPHA = 0.5
+BLEND_SHADOW_SUN = 2.0  # W/m^2 (written in lux), straight down
+
+
+def blend_shadow(out_dir):
+    """A 4 x 4 m Lambertian floor (albedo BLEND_SHADOW_ALBEDO, specularFactor 0) at y = 0 under a
+    sun shining straight down (BLEND_SHADOW_SUN W/m^2), and 1 m above it a 1 x 1 m black,
+    double-sided BLEND panel (x, z from -0.5 to 0.5, alpha BLEND_SHADOW_ALPHA): both renderers
+    treat alpha as coverage, so the floor under the panel receives (1 - alpha) of the sun,
+    radiance albedo / pi * E * (1 - alpha), and the floor beyond its shadow albedo / pi * E.
+    Nothing else lights the floor: no sky (the scene has a light), and the black panel (no
+    dielectric layer) reflects nothing. The camera at (0, 0.6, 2.5) looks at the origin (40
+    degree field): the image centre is the floor under the panel's centre."""
+    g = Gltf("blend_shadow")
+    a = BLEND_SHADOW_ALBEDO
+    floor = g.material("Floor", [a, a, a, 1.0], roughness=1.0)
+    panel_m = g.material("Panel", [0.0, 0.0, 0.0, BLEND_SHADOW_ALPHA], roughness=1.0)
+    g.doc["materials"][panel_m]["alphaMode"] = "BLEND"
+    g.doc["materials"][panel_m]["doubleSided"] = True
+    for m in (floor, panel_m):
+        g.doc["materials"][m]["extensions"] = {"KHR_materials_specular": {"specularFactor": 0.0}}
+    g.extensions.add("KHR_materials_specular")
+    f = Part(floor)
+    f.rect(1, 0.0, 1, (-2.0, -2.0), (2.0, 2.0))
+    p = Part(panel_m)
+    p.rect(1, 1.0, 1, (-0.5, -0.5), (0.5, 0.5))
+    g.node({"name": "Floor", "mesh": g.mesh("Floor", [f])})
+    g.node({"name": "Panel", "mesh": g.mesh("Panel", [p])})
+    sun = g.light({"name": "Sun", "type": "directional", "intensity": BLEND_SHADOW_SUN * 683.0})
+    s = math.sqrt(0.5)  # -90 degrees about X: the node's -Z (where the light travels) becomes -Y
+    g.node({"name": "Sun", "translation": [0.0, 5.0, 0.0], "rotation": [-s, 0.0, 0.0, s],
+            "extensions": {"KHR_lights_punctual": {"light": sun}}})
+    g.camera("Camera", [0.0, 0.6, 2.5], [0.0, 0.0, 0.0], math.radians(40.0))
+    g.write(out_dir, None)
+
+
 def draco_box(out_dir):
     """A 1 m cube of base colour (0.8, 0.5, 0.3) with normals and UVs, no camera (the framing
     camera sees it) and no light (the default sky lights it): the plain twin of
@@ -307,4 +345,4 @@ def draco_box(out_dir):
 
 
 SCENES = (vertex_colors, texture_transform, texture_filters, normal_map_plane, blend_panels, blend_panels_lit,
-          dielectric_panels, environment_plane, draco_box)
+          dielectric_panels, environment_plane, draco_box, blend_shadow)

@@ -83,7 +83,7 @@ Renderer::Renderer(gpu::Device& device, const scene::Scene& scene, const probes:
       frame_(device, static_cast<std::uint32_t>(scene.lights.size()),
              shadow_capacity(scene, shadow_settings_)),
       shadows_(device, runner_, shadow_settings_.map_size, shadow_capacity(scene, shadow_settings_),
-               frame_.layout(), materials_.layout(), plan_.alpha_test),
+               frame_.layout(), materials_.layout(), plan_.alpha_test || plan_.alpha_blend),
       probe_textures_(device, volume, options.sh_order),
       brdf_tables_(device, runner_),
       tonemapper_(device) {

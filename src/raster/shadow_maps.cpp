@@ -95,9 +95,10 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scene::Scene& scene, const Gp
   // Both faces cast: single-sided walls (a Cornell box) must block light from either side.
   vkCmdSetCullMode(cmd, VK_CULL_MODE_NONE);
   vkCmdSetFrontFace(cmd, VK_FRONT_FACE_COUNTER_CLOCKWISE);
+  // MASK and BLEND casters go through the alpha-tested pipeline (shadow_masked.frag).
   auto masked = [&](const scene::Instance& inst) {
-    return masked_pipeline_ && scene.material_of(scene.meshes[static_cast<std::size_t>(inst.mesh)])
-                                       .alpha_mode == scene::AlphaMode::Mask;
+    const scene::AlphaMode mode = scene.material_of(scene.meshes[static_cast<std::size_t>(inst.mesh)]).alpha_mode;
+    return masked_pipeline_ && mode != scene::AlphaMode::Opaque;
   };
   for (std::uint32_t layer = 0; layer < layers; ++layer) {
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -112,7 +113,7 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scene::Scene& scene, const Gp
     info.pDepthAttachment = &depth;
     vkCmdBeginRendering(cmd, &info);
     set_viewport(cmd, map_size_, map_size_);
-    // Opaque casters first with the depth-only pipeline, then masked ones with theirs.
+    // Opaque casters first with the depth-only pipeline, then masked and blended ones with theirs.
     for (int pass = 0; pass < 2; ++pass) {
       const bool masked_pass = pass == 1;
       if (masked_pass && !masked_pipeline_) break;
@@ -122,7 +123,19 @@ void ShadowMaps::record(VkCommandBuffer cmd, const scene::Scene& scene, const Gp
         if (inst.mesh < 0 || static_cast<std::size_t>(inst.mesh) >= meshes.mesh_count()) continue;
         if (masked(inst) != masked_pass) continue;
         if (masked_pass) {
-          const VkDescriptorSet set = materials.set(scene.meshes[static_cast<std::size_t>(inst.mesh)].material);
+          const scene::Mesh& mesh = scene.meshes[static_cast<std::size_t>(inst.mesh)];
+          // The path tracer sees through a single-sided blended surface from behind, shadow rays
+          // too: a shadow ray leaves the receiver towards the light, so it meets the back of a
+          // caster whose front faces the light. Such faces are culled here to match. The light
+          // projections keep NDC y up (glm's), unlike the cameras' (scene/view.h), so a
+          // counter-clockwise front face lands clockwise in the map; a mirroring transform flips
+          // it back (glTF).
+          const scene::Material& m = scene.material_of(mesh);
+          const bool mirrored = glm::determinant(glm::mat3(inst.transform)) < 0.0f;
+          vkCmdSetFrontFace(cmd, mirrored ? VK_FRONT_FACE_COUNTER_CLOCKWISE : VK_FRONT_FACE_CLOCKWISE);
+          vkCmdSetCullMode(cmd, m.alpha_mode == scene::AlphaMode::Blend && !m.double_sided ? VK_CULL_MODE_FRONT_BIT
+                                                                                           : VK_CULL_MODE_NONE);
+          const VkDescriptorSet set = materials.set(mesh.material);
           vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 1, 1, &set, 0, nullptr);
         }
         const DrawConstants pc = draw_constants(inst.transform, layer, 0);

@@ -2,7 +2,8 @@
 // spot maps, cube faces; see shadow_layout.h), rendered depth-only each frame the scene has
 // shadowed lights, and sampled by the forward pass through a comparison sampler (hardware PCF
 // where the device filters depth linearly). Alpha-masked materials get a second pipeline that
-// discards below their cutoff, so a leaf casts the shadow of a leaf, not of its quad. A frame
+// discards below their cutoff, so a leaf casts the shadow of a leaf, not of its quad; blended
+// ones go through it too, dithered to cover a fraction alpha of the map. A frame
 // without layers records nothing: the count of passes recorded is kept so that tests can check
 // a light-less scene pays for none.
 #pragma once
@@ -37,7 +38,7 @@ class ShadowMaps {
   // capacity: the most layers a frame will render (at least one layer is allocated so the
   // forward pass always has an image to bind). frame_layout: set 0's layout; material_layout:
   // MaterialTextures' layout, used as set 1 by the masked pipeline, which is only built when
-  // alpha_test is true (the scene has masked materials).
+  // alpha_test is true (the scene has masked or blended materials).
   ShadowMaps(const gpu::Device& device, gpu::CommandRunner& runner, std::uint32_t map_size,
              std::uint32_t capacity, VkDescriptorSetLayout frame_layout,
              VkDescriptorSetLayout material_layout, bool alpha_test);

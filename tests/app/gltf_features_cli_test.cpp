@@ -5,6 +5,7 @@
 // the EXR's half floats (1/2048 near 1) and lavapipe's 8-bit filter weights (1/256).
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -208,3 +209,46 @@ TEST_F(GltfFeaturesCli, IorAndSpecularChangeTheDielectricLayerInBothRenderers) {
 }
 
 }  // namespace
+
+// A blended caster (scenes/blend_shadow.gltf): alpha 0.5 lets half the sun through in both
+// renderers, the tracer by alpha as coverage, the rasterizer by a dithered shadow map. The floor
+// under the panel's centre (rows 22..26 around the image centre; the shadow spans rows 21.4 to
+// 27.7, z from -0.5 to 0.5 m) against its analytic radiance albedo / pi E (1 - alpha), and the
+// lit floor beyond the shadow (rows 32..36, z from about 0.9 to 1.15 m) against albedo / pi E.
+// Before, the rasterizer's shadow map drew the panel opaque: 0 under it.
+TEST_F(GltfFeaturesCli, ABlendedPanelCastsAShadowOfItsOpacity) {
+  const auto images = both("blend_shadow.gltf", 64, 48, 256);
+  const float lit = 0.5f / 3.14159265f * 2.0f;  // feature_scenes.py BLEND_SHADOW_ALBEDO, _SUN
+  for (int w = 0; w < 2; ++w) {
+    const glm::vec3 under = block_mean(images[w], 32, 24, 2);
+    const glm::vec3 beyond = block_mean(images[w], 32, 34, 2);
+    std::printf("%s: under the panel %.4f, beyond %.4f (analytic %.4f, %.4f)\n", kWhich[w], under.g,
+                beyond.g, 0.5f * lit, lit);
+    EXPECT_NEAR(under.g / (0.5f * lit), 1.0f, 0.05f) << kWhich[w];
+    EXPECT_NEAR(beyond.g / lit, 1.0f, 0.03f) << kWhich[w];
+  }
+}
+
+// The same panel single-sided, its front facing the sun: the path tracer's shadow rays meet its
+// back and see through it (as the rasterizer's camera does), so it casts no shadow in either
+// renderer: the rasterizer's shadow pass culls such faces.
+TEST_F(GltfFeaturesCli, ASingleSidedBlendedPanelFacingTheLightCastsNoShadow) {
+  std::string gltf = cli::slurp(cli::fs::path(DDISH_SOURCE_DIR) / "scenes" / "blend_shadow.gltf");
+  const std::string two = "\"doubleSided\": true";
+  const std::size_t at = gltf.find(two);
+  ASSERT_NE(at, std::string::npos);
+  gltf.replace(at, two.size(), "\"doubleSided\": false");
+  std::ofstream(dir_ / "single.gltf") << gltf;
+  cli::fs::copy_file(cli::fs::path(DDISH_SOURCE_DIR) / "scenes" / "blend_shadow.bin", dir_ / "blend_shadow.bin");
+  const std::string scene = quote((dir_ / "single.gltf").string());
+  const std::string size = " --width 64 --height 48";
+  Result ref = run("reference " + scene + size + " --spp 16 --out " + path("ref"));
+  ASSERT_EQ(ref.code, 0) << ref.err;
+  Result r = run("render " + scene + size + " --msaa 1 --tonemap linear --grid 2,2,2 --out " + path("r"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const float lit = 0.5f / 3.14159265f * 2.0f;
+  for (const char* file : {"ref/reference.exr", "r/frame_0000.exr"}) {
+    const glm::vec3 under = block_mean(ddish::metrics::read_image(dir_ / file), 32, 24, 2);
+    EXPECT_NEAR(under.g / lit, 1.0f, 0.01f) << file;
+  }
+}
