@@ -5,6 +5,7 @@
 #include <string>
 
 #include "scene/scene.h"
+#include "trace/ray_recorder.h"
 #include "trace/surface.h"
 #include "trace/texture_lookup.h"
 
@@ -188,6 +189,10 @@ void EmbreeScene::update(const scene::Scene& scene, std::span<const int> moved) 
 }
 
 bool EmbreeScene::intersect(const Ray& ray, const RayQuery& query, Hit& hit) const {
+  if (recorder_ != nullptr) {
+    recorder_->record({ray.origin, ray.tmin, ray.direction, ray.tmax, query.alpha_seed, query.cone_width,
+                       query.cone_spread, false});
+  }
   FilterContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
@@ -206,6 +211,10 @@ bool EmbreeScene::intersect(const Ray& ray, const RayQuery& query, Hit& hit) con
 
 bool EmbreeScene::occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax,
                            const RayQuery& query) const {
+  if (recorder_ != nullptr) {
+    recorder_->record(
+        {origin, tmin, direction, tmax, query.alpha_seed, query.cone_width, query.cone_spread, true});
+  }
   FilterContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.rtc.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;

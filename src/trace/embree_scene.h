@@ -33,6 +33,7 @@ struct Material;
 namespace ddish::trace {
 
 class TextureSet;
+class RayRecorder;
 
 struct Hit {
   int instance = -1;  // index into Scene::instances
@@ -88,6 +89,10 @@ class EmbreeScene {
   bool occluded(const glm::vec3& origin, const glm::vec3& direction, float tmin, float tmax,
                 const RayQuery& query) const;
 
+  // While set, every intersect/occluded call is recorded first (bench/trace_floor); null: off.
+  // Not while intersect/occluded run.
+  void set_recorder(RayRecorder* recorder) { recorder_ = recorder; }
+
   const InstanceTransform& transform(int instance) const {
     return transforms_[static_cast<std::size_t>(instance)];
   }
@@ -110,6 +115,7 @@ class EmbreeScene {
   std::vector<InstanceTransform> transforms_;  // per scene::Instance
   std::vector<MeshGeometry> mesh_data_;        // per scene::Mesh (stable addresses: sized once)
   std::string error_;                          // the last error Embree reported
+  RayRecorder* recorder_ = nullptr;
 };
 
 }  // namespace ddish::trace

@@ -83,6 +83,8 @@ const PathOptions& Tracer::options() const { return impl_->options; }
 void Tracer::set_options(const PathOptions& options) { impl_->options = options; }
 std::uint64_t Tracer::rays_traced() const { return impl_->rays.load(std::memory_order_relaxed); }
 void Tracer::reset_ray_count() { impl_->rays.store(0, std::memory_order_relaxed); }
+void Tracer::set_ray_recorder(RayRecorder* recorder) { impl_->embree.set_recorder(recorder); }
+const EmbreeScene& Tracer::embree_scene() const { return impl_->embree; }
 std::uint64_t Tracer::invalid_paths() const { return impl_->invalid.load(std::memory_order_relaxed); }
 
 PathSample Tracer::trace_path(const Ray& primary, Sampler& sampler) const {
