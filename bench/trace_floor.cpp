@@ -19,7 +19,9 @@
 // The first update classifies the probes (those found inside geometry are left out from then on);
 // updates 2..K are timed. Before each, the same update runs once on a copy of the volume with
 // the recorder on (untimed), and its rays are replayed R times. Threads: TBB's default (all
-// cores), or T. Prints one CSV row (header first) with medians.
+// cores), or T. Prints one CSV row (header first): the update with the median time, and the
+// medians of its floor's repeats; the *_cpu columns are process CPU time (all threads) instead
+// of wall-clock time.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -31,6 +33,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <sys/resource.h>
 
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
@@ -56,6 +60,15 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// CPU seconds of the whole process (all threads, user + system): under a loaded machine the
+// update's and the floor's CPU times compare more steadily than their wall-clock times.
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  auto s = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+  return s(u.ru_utime) + s(u.ru_stime);
 }
 
 double median(std::vector<double> v) {
@@ -231,7 +244,7 @@ int main(int argc, char** argv) try {
   probe_tracer.update(volume);  // classification: probes inside geometry are left out afterwards
 
   // Per timed update: seconds, rays and paths of the update; medians over the repeats of its floors.
-  std::vector<double> update_s, update_rays_v, update_paths, floor_s, scene_floor_s;
+  std::vector<double> update_s, update_rays_v, update_paths, floor_s, scene_floor_s, update_cpu, floor_cpu;
   std::vector<std::uint64_t> hits_v, shadow_v;
   trace::RayRecorder recorder;
   for (int k = 1; k < updates; ++k) {
@@ -242,22 +255,27 @@ int main(int argc, char** argv) try {
     probe_tracer.update(copy);
     tracer.set_ray_recorder(nullptr);
     const std::vector<trace::RecordedRay> rays = recorder.take();
-    std::vector<double> flat_s, scene_s;
+    std::vector<double> flat_s, scene_s, flat_cpu;
     std::uint64_t floor_hits = 0;
     for (int r = 0; r < repeat; ++r) {
       Clock::time_point t0 = Clock::now();
+      const double c0 = cpu_seconds();
       floor_hits = flat.trace(rays);
       flat_s.push_back(seconds_since(t0));
+      flat_cpu.push_back(cpu_seconds() - c0);
       t0 = Clock::now();
       trace_on(tracer.embree_scene(), rays);
       scene_s.push_back(seconds_since(t0));
     }
     floor_s.push_back(median(flat_s));
+    floor_cpu.push_back(median(flat_cpu));
     scene_floor_s.push_back(median(scene_s));
     hits_v.push_back(floor_hits);
     shadow_v.push_back(std::uint64_t(std::count_if(rays.begin(), rays.end(),
                                               [](const trace::RecordedRay& r) { return r.occlusion; })));
+    const double c0 = cpu_seconds();
     const probes::UpdateStats u = probe_tracer.update(volume);
+    update_cpu.push_back(cpu_seconds() - c0);
     update_s.push_back(u.seconds);
     update_rays_v.push_back(double(u.rays));
     update_paths.push_back(double(u.paths));
@@ -279,9 +297,10 @@ int main(int argc, char** argv) try {
   std::printf("scene,triangles,grid,probes,active,samples,bounces,threads,floor_rays,floor_shadow_rays,"
               "floor_hit_fraction,floor_ms,floor_mrays_s,scene_floor_ms,scene_floor_mrays_s,update_ms,"
               "update_paths,update_rays,update_mrays_s,update_primary_mrays_s,update_over_floor,"
-              "update_share_of_floor,floor_mrays_s_per_thread,update_mrays_s_per_thread\n");
+              "update_share_of_floor,floor_mrays_s_per_thread,update_mrays_s_per_thread,floor_cpu_ms,update_cpu_ms,"
+              "update_share_of_floor_cpu\n");
   std::printf("%s,%zu,%dx%dx%d,%u,%u,%d,%d,%d,%llu,%llu,%.4f,%.3f,%.3f,%.3f,%.3f,%.3f,%.0f,%.0f,%.3f,%.3f,%.2f,%.3f,"
-              "%.3f,%.3f\n",
+              "%.3f,%.3f,%.3f,%.3f,%.3f\n",
               path.c_str(), flat.triangles(), probe_grid.counts().x, probe_grid.counts().y,
               probe_grid.counts().z, probe_grid.probe_count(), volume.active_count(), samples, bounces,
               used_threads, static_cast<unsigned long long>(floor_rays),
@@ -290,7 +309,8 @@ int main(int argc, char** argv) try {
               ss > 0 ? double(floor_rays) / ss * 1e-6 : 0.0, us * 1e3, up, ur, update_mrays,
               us > 0 ? up / us * 1e-6 : 0.0, fs > 0 ? us / fs : 0.0,
               floor_mrays > 0 ? update_mrays / floor_mrays : 0.0, floor_mrays / used_threads,
-              update_mrays / used_threads);
+              update_mrays / used_threads, floor_cpu[m] * 1e3, update_cpu[m] * 1e3,
+              update_cpu[m] > 0 ? floor_cpu[m] / update_cpu[m] : 0.0);
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "trace_floor: %s\n", e.what());

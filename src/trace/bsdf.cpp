@@ -75,7 +75,8 @@ Bsdf::Bsdf(const BsdfParams& params) : params_(params), alpha_(Ggx::alpha_from_r
 
 glm::vec3 Bsdf::layer(float cos_theta) const {
   const glm::vec3 df0 = params_.dielectric_f0 - DielectricSpecularAlbedo::kF0;
-  return params_.specular * (layer_albedo_(cos_theta) + df0 * layer_albedo_.slope(cos_theta));
+  const glm::vec2 es = layer_albedo_.with_slope(cos_theta);
+  return params_.specular * (es.x + df0 * es.y);
 }
 
 glm::vec3 Bsdf::eval_diffuse(const glm::vec3& wo, const glm::vec3& wi) const {

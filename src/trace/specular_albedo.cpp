@@ -134,6 +134,17 @@ float DielectricSpecularAlbedo::Slice::slope(float cos_theta) const {
   return s0 + t_ * (s1 - s0);
 }
 
+glm::vec2 DielectricSpecularAlbedo::Slice::with_slope(float cos_theta) const {
+  int c;
+  float tc;
+  locate(std::cbrt(std::clamp(cos_theta, 0.0f, 1.0f)), kCosNodes, c, tc);
+  const float e0 = lerp_row(row0_, c, tc);
+  const float e1 = lerp_row(row1_, c, tc);
+  const float s0 = lerp_row(slope0_, c, tc);
+  const float s1 = lerp_row(slope1_, c, tc);
+  return {e0 + t_ * (e1 - e0), s0 + t_ * (s1 - s0)};
+}
+
 float DielectricSpecularAlbedo::directional(float cos_theta, float roughness) const {
   return slice(roughness)(cos_theta);
 }

@@ -29,6 +29,8 @@ class DielectricSpecularAlbedo {
    public:
     float operator()(float cos_theta) const;
     float slope(float cos_theta) const;
+    // Both at once, {E, S}: one cube root and one node search for the two (the BSDF's case).
+    glm::vec2 with_slope(float cos_theta) const;
 
    private:
     friend class DielectricSpecularAlbedo;
