@@ -53,24 +53,27 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
         const float t = RTCRayN_tfar(args->ray, args->N, i);
         const float width = q.cone_width + q.cone_spread * t;
         const glm::mat4& xf = geom->owner->transform(static_cast<int>(instance)).object_to_world;
-        const float area = world_triangle(*geom->mesh, xf, prim).area();
+        const TriangleRecord& tri = geom->triangles[static_cast<std::size_t>(prim)];
+        const float area = world_triangle(tri, xf).area();
         const scene::TextureSlot& slot = mat.base_color_texture;
         lod = tex->lod_for_footprint(
-            width, 1.0f, uv_area(*geom->mesh, prim, slot.texcoord) * slot.transform.area_scale(), area);
+            width, 1.0f, uv_area(tri, *geom->mesh, prim, slot.texcoord) * slot.transform.area_scale(), area);
       }
     }
     // A single-sided BLEND surface seen from behind is not there, as the rasterizer culls its
     // back faces: the ray passes (a closed opaque object's back faces still end paths).
     if (mat.alpha_mode == scene::AlphaMode::Blend && !mat.double_sided && instance != RTC_INVALID_GEOMETRY_ID) {
       const InstanceTransform& xf = geom->owner->transform(static_cast<int>(instance));
-      glm::vec3 ng = world_triangle(*geom->mesh, xf.object_to_world, prim).cross();
+      glm::vec3 ng =
+          world_triangle(geom->triangles[static_cast<std::size_t>(prim)], xf.object_to_world).cross();
       if (xf.mirrored) ng = -ng;
       if (glm::dot(ng, ctx->direction) > 0.0f) {
         args->valid[i] = 0;
         continue;
       }
     }
-    const float alpha = alpha_at(mat, *geom->textures, *geom->mesh, prim, u, v, lod);
+    const float alpha = alpha_at(mat, *geom->textures, *geom->mesh, geom->triangles[static_cast<std::size_t>(prim)],
+                                 prim, u, v, lod);
     const bool keep = mat.alpha_mode == scene::AlphaMode::Mask
                           ? alpha >= mat.alpha_cutoff
                           : hash_uniform(q.alpha_seed, instance, static_cast<std::uint32_t>(prim)) < alpha;
@@ -95,8 +98,9 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const TextureSet& textures) 
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const scene::Mesh& mesh = scene.meshes[m];
     const scene::Material& mat = scene.material_of(mesh);
-    mesh_data_[m] = {&mesh, &mat, &textures, this};
+    mesh_data_[m] = {&mesh, &mat, &textures, this, {}};
     if (mesh.triangle_count() == 0 || mesh.positions.empty()) continue;
+    mesh_data_[m].triangles = make_triangle_records(mesh);
 
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* verts = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -168,6 +172,13 @@ void EmbreeScene::release() {
   }
   if (device_ != nullptr) rtcReleaseDevice(device_);
   device_ = nullptr;
+}
+
+void EmbreeScene::update_mesh_triangles(const scene::Mesh& mesh, int m) {
+  MeshGeometry& g = mesh_data_.at(static_cast<std::size_t>(m));
+  if (g.mesh != &mesh || g.triangles.size() != mesh.triangle_count())
+    throw std::invalid_argument("update_mesh_triangles: not the mesh this scene was built with");
+  g.triangles = make_triangle_records(mesh);
 }
 
 void EmbreeScene::update(const scene::Scene& scene, std::span<const int> moved) {

@@ -23,6 +23,7 @@
 
 #include "trace/surface.h"
 #include "trace/tracer.h"
+#include "trace/triangle_record.h"
 
 namespace ddish::scene {
 struct Scene;
@@ -97,12 +98,23 @@ class EmbreeScene {
     return transforms_[static_cast<std::size_t>(instance)];
   }
 
+  // The shading record of triangle `prim` of scene mesh `mesh` (trace/triangle_record.h).
+  const TriangleRecord& triangle(int mesh, int prim) const {
+    return mesh_data_[static_cast<std::size_t>(mesh)].triangles[static_cast<std::size_t>(prim)];
+  }
+  // Rebuilds mesh `m`'s triangle records from its vertex data (the same scene::Mesh, same
+  // triangle count): call whenever a mesh's vertices change (skinning, morph targets), together
+  // with refitting its Embree geometry, before tracing again. Not concurrent with
+  // intersect/occluded.
+  void update_mesh_triangles(const scene::Mesh& mesh, int m);
+
   // Per-mesh data the filter functions read (public so the C callbacks can name it).
   struct MeshGeometry {
     const scene::Mesh* mesh = nullptr;
     const scene::Material* material = nullptr;
     const TextureSet* textures = nullptr;
     const EmbreeScene* owner = nullptr;
+    std::vector<TriangleRecord> triangles;  // per triangle of the mesh
   };
 
  private:

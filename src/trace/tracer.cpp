@@ -125,10 +125,11 @@ PathSample Tracer::trace_path(const Ray& primary, Sampler& sampler) const {
       break;
     }
     cone_width += spread * hit.t;
-    const scene::Mesh& mesh =
-        scene.meshes[static_cast<std::size_t>(scene.instances[static_cast<std::size_t>(hit.instance)].mesh)];
+    const int mesh_index = scene.instances[static_cast<std::size_t>(hit.instance)].mesh;
+    const scene::Mesh& mesh = scene.meshes[static_cast<std::size_t>(mesh_index)];
     HitInput in;
     in.mesh = &mesh;
+    in.triangle = &im.embree.triangle(mesh_index, hit.prim);
     in.material = &scene.material_of(mesh);
     in.transform = &im.embree.transform(hit.instance);
     in.prim = hit.prim;
