@@ -244,7 +244,8 @@ int main(int argc, char** argv) try {
   probe_tracer.update(volume);  // classification: probes inside geometry are left out afterwards
 
   // Per timed update: seconds, rays and paths of the update; medians over the repeats of its floors.
-  std::vector<double> update_s, update_rays_v, update_paths, floor_s, scene_floor_s, update_cpu, floor_cpu;
+  std::vector<double> update_s, update_rays_v, update_paths, floor_s, scene_floor_s, update_cpu, floor_cpu,
+      scene_floor_cpu;
   std::vector<std::uint64_t> hits_v, shadow_v;
   trace::RayRecorder recorder;
   for (int k = 1; k < updates; ++k) {
@@ -255,7 +256,7 @@ int main(int argc, char** argv) try {
     probe_tracer.update(copy);
     tracer.set_ray_recorder(nullptr);
     const std::vector<trace::RecordedRay> rays = recorder.take();
-    std::vector<double> flat_s, scene_s, flat_cpu;
+    std::vector<double> flat_s, scene_s, flat_cpu, scene_cpu;
     std::uint64_t floor_hits = 0;
     for (int r = 0; r < repeat; ++r) {
       Clock::time_point t0 = Clock::now();
@@ -264,11 +265,14 @@ int main(int argc, char** argv) try {
       flat_s.push_back(seconds_since(t0));
       flat_cpu.push_back(cpu_seconds() - c0);
       t0 = Clock::now();
+      const double c1 = cpu_seconds();
       trace_on(tracer.embree_scene(), rays);
       scene_s.push_back(seconds_since(t0));
+      scene_cpu.push_back(cpu_seconds() - c1);
     }
     floor_s.push_back(median(flat_s));
     floor_cpu.push_back(median(flat_cpu));
+    scene_floor_cpu.push_back(median(scene_cpu));
     scene_floor_s.push_back(median(scene_s));
     hits_v.push_back(floor_hits);
     shadow_v.push_back(std::uint64_t(std::count_if(rays.begin(), rays.end(),
@@ -298,9 +302,9 @@ int main(int argc, char** argv) try {
               "floor_hit_fraction,floor_ms,floor_mrays_s,scene_floor_ms,scene_floor_mrays_s,update_ms,"
               "update_paths,update_rays,update_mrays_s,update_primary_mrays_s,update_over_floor,"
               "update_share_of_floor,floor_mrays_s_per_thread,update_mrays_s_per_thread,floor_cpu_ms,update_cpu_ms,"
-              "update_share_of_floor_cpu\n");
+              "update_share_of_floor_cpu,scene_floor_cpu_ms,tracer_scene\n");
   std::printf("%s,%zu,%dx%dx%d,%u,%u,%d,%d,%d,%llu,%llu,%.4f,%.3f,%.3f,%.3f,%.3f,%.3f,%.0f,%.0f,%.3f,%.3f,%.2f,%.3f,"
-              "%.3f,%.3f,%.3f,%.3f,%.3f\n",
+              "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%s\n",
               path.c_str(), flat.triangles(), probe_grid.counts().x, probe_grid.counts().y,
               probe_grid.counts().z, probe_grid.probe_count(), volume.active_count(), samples, bounces,
               used_threads, static_cast<unsigned long long>(floor_rays),
@@ -310,7 +314,8 @@ int main(int argc, char** argv) try {
               us > 0 ? up / us * 1e-6 : 0.0, fs > 0 ? us / fs : 0.0,
               floor_mrays > 0 ? update_mrays / floor_mrays : 0.0, floor_mrays / used_threads,
               update_mrays / used_threads, floor_cpu[m] * 1e3, update_cpu[m] * 1e3,
-              update_cpu[m] > 0 ? floor_cpu[m] / update_cpu[m] : 0.0);
+              update_cpu[m] > 0 ? floor_cpu[m] / update_cpu[m] : 0.0, scene_floor_cpu[m] * 1e3,
+              tracer.embree_scene().flat() ? "flat" : "instanced");
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "trace_floor: %s\n", e.what());
