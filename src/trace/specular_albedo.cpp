@@ -116,6 +116,20 @@ DielectricSpecularAlbedo::Slice DielectricSpecularAlbedo::slice(float roughness)
   return slice;
 }
 
+DielectricSpecularAlbedo::AtRoughness DielectricSpecularAlbedo::at(float roughness) const {
+  int r;
+  AtRoughness a;
+  locate(roughness_coordinate(roughness), kRoughnessNodes, r, a.slice.t_);
+  const float tr = a.slice.t_;
+  a.slice.row0_ = &e_[r * kCosNodes];
+  a.slice.row1_ = &e_[(r + 1) * kCosNodes];
+  a.slice.slope0_ = &s_[r * kCosNodes];
+  a.slice.slope1_ = &s_[(r + 1) * kCosNodes];
+  a.average = e_avg_[r] + tr * (e_avg_[r + 1] - e_avg_[r]);
+  a.average_slope = s_avg_[r] + tr * (s_avg_[r + 1] - s_avg_[r]);
+  return a;
+}
+
 float DielectricSpecularAlbedo::Slice::operator()(float cos_theta) const {
   int c;
   float tc;
