@@ -163,12 +163,14 @@ def section_scaling(runner, cfg, scenes, results_dir, report):
                 f"{trace['floor_shadow_rays']} of them shadow rays) with plain Embree queries: "
                 f"{fmt(float(trace['floor_ms']))} ms ({fmt(float(trace['floor_mrays_s']), 2)} Mrays/s, "
                 f"{fmt(float(trace['floor_mrays_s_per_thread']), 2)} per thread, {fmt(100 * float(trace['floor_hit_fraction']))} % hit); "
-                f"through the tracer's own Embree scene (instances, alpha filters): {fmt(float(trace['scene_floor_ms']))} ms "
+                f"through the tracer's own Embree scene ({trace['tracer_scene']}, alpha filters): {fmt(float(trace['scene_floor_ms']))} ms "
                 f"({fmt(float(trace['scene_floor_mrays_s']), 2)} Mrays/s). Full probe update casting the same rays: "
                 f"{fmt(float(trace['update_ms']))} ms, {fmt(float(trace['update_mrays_s']), 2)} Mrays/s "
                 f"({fmt(float(trace['update_mrays_s_per_thread']), 2)} per thread); share of the floor "
                 f"{fmt(100 * float(trace['update_share_of_floor']))} % (the update takes "
-                f"{fmt(float(trace['update_over_floor']), 2)}× the floor's time).\n")
+                f"{fmt(float(trace['update_over_floor']), 2)}× the floor's time; on process CPU time, steadier "
+                f"on a loaded machine: {fmt(float(trace['update_cpu_ms']))} ms against {fmt(float(trace['floor_cpu_ms']))} ms, "
+                f"{fmt(100 * float(trace['update_share_of_floor_cpu']))} %).\n")
         else:
             report.append(f"Tracing floor: {trace_note}.\n")
     if floor_rows:
