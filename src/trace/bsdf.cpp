@@ -72,7 +72,16 @@ Bsdf::Bsdf(const BsdfParams& params) : params_(params), alpha_(Ggx::alpha_from_r
   diffuse_weight_ = dielectric * mean(params_.base_color);
 }
 
+Bsdf::Bsdf(const BsdfParams& params, const glm::vec3& wo) : Bsdf(params) {
+  wo_layer_ = layer_of(wo.z);
+  wo_cos_ = wo.z;
+}
+
 glm::vec3 Bsdf::layer(float cos_theta) const {
+  return cos_theta == wo_cos_ ? wo_layer_ : layer_of(cos_theta);
+}
+
+glm::vec3 Bsdf::layer_of(float cos_theta) const {
   const glm::vec3 df0 = params_.dielectric_f0 - DielectricSpecularAlbedo::kF0;
   const glm::vec2 es = layer_albedo_.with_slope(cos_theta);
   return params_.specular * (es.x + df0 * es.y);

@@ -162,9 +162,9 @@ PathSample Tracer::trace_path(const Ray& primary, Sampler& sampler) const {
     if (sp.unlit) break;  // KHR_materials_unlit reflects nothing
     if (depth >= opt.max_bounces) break;
 
-    const Bsdf bsdf(sp.bsdf);
     const glm::vec3 wo = sp.shading.to_local(-ray.direction);
     if (wo.z <= 0.0f) break;  // exactly grazing: nothing is reflected
+    const Bsdf bsdf(sp.bsdf, wo);
     const glm::vec3 origin = offset_ray_origin(sp.position, sp.ng, sp.offset_scale);
 
     // Next-event estimation: every punctual light, then one point on the emissive triangles.
