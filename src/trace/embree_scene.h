@@ -4,8 +4,11 @@
 // only re-sets their transforms and re-commits the top level.
 // A scene without animation whose instances share little (placed triangles at most four times the
 // meshes' own) is built flat instead: one world-space triangle geometry per instance, its ID
-// the instance index, in one BVH. Rays then skip the instance level, which costs about a quarter
-// of the closest-hit rate where meshes overlap (Sponza); hits and shading are the same.
+// the instance index, in one BVH. Rays then skip the instance level (on Sponza, whose mesh boxes
+// overlap, ~11 % of the Embree time); shading is the same. Where two coincident triangles tie
+// for the closest hit, the two structures may pick different ones (0.42 % of random rays from
+// Sponza's probe positions hit another triangle, all but 1 in 8623 at the same distance within
+// 1e-4 of it).
 //
 // Alpha: AlphaMode::Mask materials get intersection and occlusion filter functions that reject
 // hits whose base-colour alpha (factor × texture at the hit's UV) is below the cutoff.
@@ -112,8 +115,8 @@ class EmbreeScene {
   }
   // Rebuilds mesh `m`'s triangle records from its vertex data (the same scene::Mesh, same
   // triangle count): call whenever a mesh's vertices change (skinning, morph targets), together
-  // with refitting its Embree geometry, before tracing again. Not concurrent with
-  // intersect/occluded.
+  // with refitting its Embree geometry (in a flat scene: every instance's world-space copy),
+  // before tracing again. Not concurrent with intersect/occluded.
   void update_mesh_triangles(const scene::Mesh& mesh, int m);
 
   // Per-mesh data the filter functions read (public so the C callbacks can name it).
