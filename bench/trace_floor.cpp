@@ -1,16 +1,27 @@
-// The tracing floor of a probe update: the rays a probe update starts (the randomly rotated
-// spherical Fibonacci directions from every active probe of the scene's grid, probes/fibonacci.h)
-// traced as plain closest-hit queries, rtcIntersect1 on one flat Embree scene of the world-space
-// triangles, with no filter functions, no shading and no bounces; against the full probe update
-// (probes::ProbeTracer with the path tracer) of the same probes and samples.
+// The tracing floor of a probe update: the rays a real probe update casts, recorded as it casts
+// them (trace/ray_recorder.h: probe and bounce rays as closest-hit queries, shadow rays as
+// occlusion queries, same directions, same proportions, each thread's rays in path order), then
+// replayed with plain rtcIntersect1 / rtcOccluded1 on one flat Embree scene of the world-space
+// triangles (no instancing level, no filter functions, no shading) over the same threads. The
+// full probe update (probes::ProbeTracer with the path tracer) of the same probes, seed and
+// update number casts exactly those rays, so update Mrays/s ÷ floor Mrays/s is the share of
+// Embree's raw speed the update reaches.
+//
+// A second replay goes through the tracer's own Embree scene as the tracer calls it
+// (trace::EmbreeScene: per-mesh BVHs under an instance level, alpha-test filters): what the
+// update would cost if shading were free.
 //
 //   trace_floor SCENE [--grid X,Y,Z] [--samples N] [--bounces N] [--updates K] [--repeat R]
+//                     [--threads T]
 //
 // Grid: --grid counts over the sidecar's probe bounds (else the scene's bounds); without it the
 // sidecar's counts; without those the automatic grid (what `ddish render` places by default).
 // The first update classifies the probes (those found inside geometry are left out from then on);
-// updates 2..K are timed, and the floor traces the rays of each of those updates R times.
-// Prints one CSV row (header first) with medians; threads are TBB's default (all cores).
+// updates 2..K are timed. Before each, the same update runs once on a copy of the volume with
+// the recorder on (untimed), and its rays are replayed R times. Threads: TBB's default (all
+// cores), or T. Prints one CSV row (header first): the update with the median time, and the
+// medians of its floor's repeats; the *_cpu columns are process CPU time (all threads) instead
+// of wall-clock time.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -18,17 +29,20 @@
 #include <cstdio>
 #include <exception>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
 #include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "probes/fibonacci.h"
 #include "probes/probe_grid.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
@@ -36,7 +50,7 @@
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
 #include "trace/embree_scene.h"
-#include "trace/sampler.h"
+#include "trace/ray_recorder.h"
 #include "trace/tracer.h"
 
 namespace {
@@ -46,6 +60,15 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// CPU seconds of the whole process (all threads, user + system): under a loaded machine the
+// update's and the floor's CPU times compare more steadily than their wall-clock times.
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  auto s = [](const timeval& t) { return double(t.tv_sec) + 1e-6 * double(t.tv_usec); };
+  return s(u.ru_utime) + s(u.ru_stime);
 }
 
 double median(std::vector<double> v) {
@@ -110,8 +133,9 @@ class FlatScene {
   FlatScene(const FlatScene&) = delete;
   FlatScene& operator=(const FlatScene&) = delete;
 
-  // Closest hit of every ray, in parallel; returns the number of rays that hit something.
-  std::uint64_t trace(const std::vector<trace::Ray>& rays) const {
+  // Every ray in parallel, closest-hit or occlusion query as recorded; returns the number of
+  // rays that hit something.
+  std::uint64_t trace(const std::vector<trace::RecordedRay>& rays) const {
     std::atomic<std::uint64_t> hits{0};
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024),
                       [&](const tbb::blocked_range<std::size_t>& range) {
@@ -119,9 +143,26 @@ class FlatScene {
                         rtcInitIntersectContext(&context);
                         std::uint64_t local = 0;
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                          RTCRayHit rh = trace::to_rtc_rayhit(rays[i]);
-                          rtcIntersect1(scene_, &context, &rh);
-                          if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) ++local;
+                          const trace::RecordedRay& r = rays[i];
+                          if (r.occlusion) {
+                            RTCRay ray{};
+                            ray.org_x = r.origin.x;
+                            ray.org_y = r.origin.y;
+                            ray.org_z = r.origin.z;
+                            ray.dir_x = r.direction.x;
+                            ray.dir_y = r.direction.y;
+                            ray.dir_z = r.direction.z;
+                            ray.tnear = r.tmin;
+                            ray.tfar = r.tmax;
+                            ray.mask = 0xFFFFFFFFu;
+                            rtcOccluded1(scene_, &context, &ray);
+                            if (ray.tfar < 0.0f) ++local;
+                          } else {
+                            const trace::Ray ray{r.origin, r.direction, r.tmin, r.tmax, 0.0f};
+                            RTCRayHit rh = trace::to_rtc_rayhit(ray);
+                            rtcIntersect1(scene_, &context, &rh);
+                            if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) ++local;
+                          }
                         }
                         hits += local;
                       });
@@ -136,32 +177,33 @@ class FlatScene {
   std::size_t triangles_ = 0;
 };
 
-// The primary rays of one probe update (volume update number `frame`), exactly as
-// ProbeTracer::trace_probe draws them: the probe's own sampler stream, one random rotation,
-// the rotated Fibonacci lattice.
-std::vector<trace::Ray> update_rays(const probes::ProbeVolume& volume, std::uint32_t samples,
-                                    std::uint64_t seed, std::uint64_t frame) {
-  std::vector<trace::Ray> rays;
-  for (std::uint32_t p = 0; p < volume.probe_count(); ++p) {
-    if (!volume.state(p).active()) continue;
-    trace::Sampler sampler(seed, p, frame);
-    const glm::mat3 rotation = probes::random_rotation(sampler);
-    const glm::vec3 origin = volume.grid().position(p);
-    for (std::uint32_t i = 0; i < samples; ++i) {
-      trace::Ray ray;
-      ray.origin = origin;
-      ray.direction = glm::normalize(rotation * probes::fibonacci_direction(i, samples));
-      rays.push_back(ray);
-    }
-  }
-  return rays;
+// The same rays through the tracer's own Embree scene, as trace_path casts them.
+std::uint64_t trace_on(const trace::EmbreeScene& scene, const std::vector<trace::RecordedRay>& rays) {
+  std::atomic<std::uint64_t> hits{0};
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      std::uint64_t local = 0;
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        const trace::RecordedRay& r = rays[i];
+                        const trace::RayQuery query{r.alpha_seed, r.cone_width, r.cone_spread, -1};
+                        if (r.occlusion) {
+                          if (scene.occluded(r.origin, r.direction, r.tmin, r.tmax, query)) ++local;
+                        } else {
+                          trace::Hit hit;
+                          const trace::Ray ray{r.origin, r.direction, r.tmin, r.tmax, 0.0f};
+                          if (scene.intersect(ray, query, hit)) ++local;
+                        }
+                      }
+                      hits += local;
+                    });
+  return hits.load();
 }
 
 }  // namespace
 
 int main(int argc, char** argv) try {
   std::string path, grid;
-  int samples = 256, bounces = 15, updates = 4, repeat = 3;  // bounces: ddish render's default
+  int samples = 256, bounces = 15, updates = 4, repeat = 3, threads = 0;  // bounces: ddish render's default
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -173,18 +215,24 @@ int main(int argc, char** argv) try {
     else if (a == "--bounces") bounces = std::stoi(next());
     else if (a == "--updates") updates = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
+    else if (a == "--threads") threads = std::stoi(next());
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else path = a;
   }
-  if (path.empty()) throw std::invalid_argument("usage: trace_floor SCENE [--grid X,Y,Z] [--samples N] [--bounces N] [--updates K] [--repeat R]");
-  if (samples < 1 || bounces < 0 || updates < 2 || repeat < 1)
-    throw std::invalid_argument("need --samples >= 1, --bounces >= 0, --updates >= 2, --repeat >= 1");
+  if (path.empty())
+    throw std::invalid_argument("usage: trace_floor SCENE [--grid X,Y,Z] [--samples N] [--bounces N] "
+                                "[--updates K] [--repeat R] [--threads T]");
+  if (samples < 1 || bounces < 0 || updates < 2 || repeat < 1 || threads < 0)
+    throw std::invalid_argument("need --samples >= 1, --bounces >= 0, --updates >= 2, --repeat >= 1, --threads >= 0");
+  std::optional<tbb::global_control> thread_limit;
+  if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const int used_threads = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
 
   const scene::Scene s = scene::load_scene(path);
   const probes::ProbeGrid probe_grid = place(s, grid);
   trace::PathOptions path_options;
   path_options.max_bounces = bounces;
-  const trace::Tracer tracer(s, path_options);
+  trace::Tracer tracer(s, path_options);
   const FlatScene flat(s);
 
   probes::ProbeVolume volume(probe_grid, probes::kDefaultShOrder);
@@ -195,39 +243,79 @@ int main(int argc, char** argv) try {
   const probes::ProbeTracer probe_tracer(source, options);
   probe_tracer.update(volume);  // classification: probes inside geometry are left out afterwards
 
-  std::vector<double> update_s, update_rays_v, update_paths, floor_s;
-  std::uint64_t floor_rays = 0, floor_hits = 0;
+  // Per timed update: seconds, rays and paths of the update; medians over the repeats of its floors.
+  std::vector<double> update_s, update_rays_v, update_paths, floor_s, scene_floor_s, update_cpu, floor_cpu,
+      scene_floor_cpu;
+  std::vector<std::uint64_t> hits_v, shadow_v;
+  trace::RayRecorder recorder;
   for (int k = 1; k < updates; ++k) {
-    // The rays of the update about to run: begin_update() numbers it frame() + 1.
-    const std::vector<trace::Ray> rays =
-        update_rays(volume, options.samples, options.seed, volume.frame() + 1);
+    // The update about to run, once on a copy of the volume with the recorder on: the same
+    // probes, seed and update number cast the same rays.
+    probes::ProbeVolume copy = volume;
+    tracer.set_ray_recorder(&recorder);
+    probe_tracer.update(copy);
+    tracer.set_ray_recorder(nullptr);
+    const std::vector<trace::RecordedRay> rays = recorder.take();
+    std::vector<double> flat_s, scene_s, flat_cpu, scene_cpu;
+    std::uint64_t floor_hits = 0;
     for (int r = 0; r < repeat; ++r) {
-      const Clock::time_point t0 = Clock::now();
+      Clock::time_point t0 = Clock::now();
+      const double c0 = cpu_seconds();
       floor_hits = flat.trace(rays);
-      floor_s.push_back(seconds_since(t0));
+      flat_s.push_back(seconds_since(t0));
+      flat_cpu.push_back(cpu_seconds() - c0);
+      t0 = Clock::now();
+      const double c1 = cpu_seconds();
+      trace_on(tracer.embree_scene(), rays);
+      scene_s.push_back(seconds_since(t0));
+      scene_cpu.push_back(cpu_seconds() - c1);
     }
-    floor_rays = rays.size();
+    floor_s.push_back(median(flat_s));
+    floor_cpu.push_back(median(flat_cpu));
+    scene_floor_cpu.push_back(median(scene_cpu));
+    scene_floor_s.push_back(median(scene_s));
+    hits_v.push_back(floor_hits);
+    shadow_v.push_back(std::uint64_t(std::count_if(rays.begin(), rays.end(),
+                                              [](const trace::RecordedRay& r) { return r.occlusion; })));
+    const double c0 = cpu_seconds();
     const probes::UpdateStats u = probe_tracer.update(volume);
+    update_cpu.push_back(cpu_seconds() - c0);
     update_s.push_back(u.seconds);
     update_rays_v.push_back(double(u.rays));
     update_paths.push_back(double(u.paths));
-    if (u.paths != rays.size())
-      throw std::runtime_error("the update started " + std::to_string(u.paths) +
-                               " paths, the floor traced " + std::to_string(rays.size()) + " rays");
+    if (u.rays != rays.size())
+      throw std::runtime_error("the update cast " + std::to_string(u.rays) + " rays, the recording has " +
+                               std::to_string(rays.size()));
   }
-  const double fs = median(floor_s), us = median(update_s);
-  const double ur = median(update_rays_v), up = median(update_paths);
-  std::printf("scene,triangles,grid,probes,active,samples,bounces,threads,floor_rays,floor_hit_fraction,"
-              "floor_ms,floor_mrays_s,update_ms,update_paths,update_rays,update_mrays_s,"
-              "update_primary_mrays_s,update_over_floor\n");
-  std::printf("%s,%zu,%dx%dx%d,%u,%u,%d,%d,%d,%llu,%.4f,%.3f,%.3f,%.3f,%.0f,%.0f,%.3f,%.3f,%.2f\n",
+  // The update with the median time, and its own floors: one update's rays throughout.
+  std::vector<std::size_t> order(update_s.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return update_s[a] < update_s[b]; });
+  const std::size_t m = order[order.size() / 2];
+  const double fs = floor_s[m], ss = scene_floor_s[m], us = update_s[m];
+  const double ur = update_rays_v[m], up = update_paths[m];
+  const auto floor_rays = static_cast<std::uint64_t>(ur);
+  const std::uint64_t floor_hits = hits_v[m], shadow_rays = shadow_v[m];
+  const double floor_mrays = fs > 0 ? ur / fs * 1e-6 : 0.0;
+  const double update_mrays = us > 0 ? ur / us * 1e-6 : 0.0;
+  std::printf("scene,triangles,grid,probes,active,samples,bounces,threads,floor_rays,floor_shadow_rays,"
+              "floor_hit_fraction,floor_ms,floor_mrays_s,scene_floor_ms,scene_floor_mrays_s,update_ms,"
+              "update_paths,update_rays,update_mrays_s,update_primary_mrays_s,update_over_floor,"
+              "update_share_of_floor,floor_mrays_s_per_thread,update_mrays_s_per_thread,floor_cpu_ms,update_cpu_ms,"
+              "update_share_of_floor_cpu,scene_floor_cpu_ms,tracer_scene\n");
+  std::printf("%s,%zu,%dx%dx%d,%u,%u,%d,%d,%d,%llu,%llu,%.4f,%.3f,%.3f,%.3f,%.3f,%.3f,%.0f,%.0f,%.3f,%.3f,%.2f,%.3f,"
+              "%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%s\n",
               path.c_str(), flat.triangles(), probe_grid.counts().x, probe_grid.counts().y,
-              probe_grid.counts().z, probe_grid.probe_count(), volume.active_count(), samples,
-              bounces, tbb::this_task_arena::max_concurrency(),
-              static_cast<unsigned long long>(floor_rays),
-              floor_rays ? double(floor_hits) / double(floor_rays) : 0.0, fs * 1e3,
-              fs > 0 ? double(floor_rays) / fs * 1e-6 : 0.0, us * 1e3, up, ur,
-              us > 0 ? ur / us * 1e-6 : 0.0, us > 0 ? up / us * 1e-6 : 0.0, fs > 0 ? us / fs : 0.0);
+              probe_grid.counts().z, probe_grid.probe_count(), volume.active_count(), samples, bounces,
+              used_threads, static_cast<unsigned long long>(floor_rays),
+              static_cast<unsigned long long>(shadow_rays),
+              floor_rays ? double(floor_hits) / double(floor_rays) : 0.0, fs * 1e3, floor_mrays, ss * 1e3,
+              ss > 0 ? double(floor_rays) / ss * 1e-6 : 0.0, us * 1e3, up, ur, update_mrays,
+              us > 0 ? up / us * 1e-6 : 0.0, fs > 0 ? us / fs : 0.0,
+              floor_mrays > 0 ? update_mrays / floor_mrays : 0.0, floor_mrays / used_threads,
+              update_mrays / used_threads, floor_cpu[m] * 1e3, update_cpu[m] * 1e3,
+              update_cpu[m] > 0 ? floor_cpu[m] / update_cpu[m] : 0.0, scene_floor_cpu[m] * 1e3,
+              tracer.embree_scene().flat() ? "flat" : "instanced");
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "trace_floor: %s\n", e.what());

@@ -39,9 +39,11 @@ def section_scaling(runner, cfg, scenes, results_dir, report):
         "the same triangles, vertex shader, depth test, passes and target, with a fragment shader "
         "that writes a constant colour; its frame (record + GPU + readback, shadow maps kept) is the "
         "machine's vertex + raster + fill floor for N views, so *raster ÷ floor* is what shading "
-        "multiplies it by. *Tracing floor* is `bench/trace_floor`: the probe update's own primary rays (rotated "
-        "Fibonacci directions from every active probe) traced with plain `rtcIntersect1` closest-hit "
-        "queries on one flat Embree scene, no shading, against the full probe update.\n")
+        "multiplies it by. *Tracing floor* is `bench/trace_floor`: the rays of a real probe update, "
+        "recorded as it casts them (probe and bounce rays as closest-hit queries, shadow rays as "
+        "occlusion queries), replayed with plain `rtcIntersect1` / `rtcOccluded1` on one flat Embree "
+        "scene over the same threads, no shading, against the full probe update casting the same "
+        "rays; *share of the floor* is the update's Mrays/s over the floor's.\n")
     floor_rows = []
     trace_rows = []
     for key in cfg["scaling_scenes"]:
@@ -156,13 +158,19 @@ def section_scaling(runner, cfg, scenes, results_dir, report):
         if trace:
             report.append(
                 f"Tracing floor ({trace_note}): grid {trace['grid']}, {trace['active']} active of "
-                f"{trace['probes']} probes × {trace['samples']} paths = {trace['floor_rays']} primary rays "
-                f"per update, {trace['threads']} threads. Plain closest hit: {fmt(float(trace['floor_ms']))} ms "
-                f"({fmt(float(trace['floor_mrays_s']), 2)} Mrays/s, {fmt(100 * float(trace['floor_hit_fraction']))} % hit). "
-                f"Full probe update of the same probes: {fmt(float(trace['update_ms']))} ms, "
-                f"{trace['update_rays']} rays ({fmt(float(trace['update_rays']) / max(1.0, float(trace['update_paths'])), 2)} per path: "
-                f"bounces and shadow rays), {fmt(float(trace['update_mrays_s']), 2)} Mrays/s; the update takes "
-                f"{fmt(float(trace['update_over_floor']), 1)}× the floor's time.\n")
+                f"{trace['probes']} probes × {trace['samples']} paths, {trace['threads']} threads. The update's own "
+                f"{trace['floor_rays']} rays ({fmt(float(trace['update_rays']) / max(1.0, float(trace['update_paths'])), 2)} per path; "
+                f"{trace['floor_shadow_rays']} of them shadow rays) with plain Embree queries: "
+                f"{fmt(float(trace['floor_ms']))} ms ({fmt(float(trace['floor_mrays_s']), 2)} Mrays/s, "
+                f"{fmt(float(trace['floor_mrays_s_per_thread']), 2)} per thread, {fmt(100 * float(trace['floor_hit_fraction']))} % hit); "
+                f"through the tracer's own Embree scene ({trace['tracer_scene']}, alpha filters): {fmt(float(trace['scene_floor_ms']))} ms "
+                f"({fmt(float(trace['scene_floor_mrays_s']), 2)} Mrays/s). Full probe update casting the same rays: "
+                f"{fmt(float(trace['update_ms']))} ms, {fmt(float(trace['update_mrays_s']), 2)} Mrays/s "
+                f"({fmt(float(trace['update_mrays_s_per_thread']), 2)} per thread); share of the floor "
+                f"{fmt(100 * float(trace['update_share_of_floor']))} % (the update takes "
+                f"{fmt(float(trace['update_over_floor']), 2)}× the floor's time; on process CPU time, steadier "
+                f"on a loaded machine: {fmt(float(trace['update_cpu_ms']))} ms against {fmt(float(trace['floor_cpu_ms']))} ms, "
+                f"{fmt(100 * float(trace['update_share_of_floor_cpu']))} %).\n")
         else:
             report.append(f"Tracing floor: {trace_note}.\n")
     if floor_rows:

@@ -63,19 +63,28 @@ Bsdf::Bsdf(const BsdfParams& params) : params_(params), alpha_(Ggx::alpha_from_r
   const float s = params_.specular;
   f0_ = dielectric * s * params_.dielectric_f0 + m * params_.base_color;
   f90_minus_f0_ = dielectric * s * (1.0f - params_.dielectric_f0) + m * (1.0f - params_.base_color);
-  const auto& table = DielectricSpecularAlbedo::get();
-  layer_albedo_ = table.slice(params_.roughness);
+  const DielectricSpecularAlbedo::AtRoughness rows = DielectricSpecularAlbedo::get().at(params_.roughness);
+  layer_albedo_ = rows.slice;
   // The layer's cosine-weighted average albedo, per channel (linear in F0 as E is).
   const glm::vec3 e_avg =
-      s * (table.average(params_.roughness) +
-           (params_.dielectric_f0 - DielectricSpecularAlbedo::kF0) * table.average_slope(params_.roughness));
+      s * (rows.average + (params_.dielectric_f0 - DielectricSpecularAlbedo::kF0) * rows.average_slope);
   diffuse_ = dielectric * params_.base_color * kInvPi / (1.0f - e_avg);
   diffuse_weight_ = dielectric * mean(params_.base_color);
 }
 
+Bsdf::Bsdf(const BsdfParams& params, const glm::vec3& wo) : Bsdf(params) {
+  wo_layer_ = layer_of(wo.z);
+  wo_cos_ = wo.z;
+}
+
 glm::vec3 Bsdf::layer(float cos_theta) const {
+  return cos_theta == wo_cos_ ? wo_layer_ : layer_of(cos_theta);
+}
+
+glm::vec3 Bsdf::layer_of(float cos_theta) const {
   const glm::vec3 df0 = params_.dielectric_f0 - DielectricSpecularAlbedo::kF0;
-  return params_.specular * (layer_albedo_(cos_theta) + df0 * layer_albedo_.slope(cos_theta));
+  const glm::vec2 es = layer_albedo_.with_slope(cos_theta);
+  return params_.specular * (es.x + df0 * es.y);
 }
 
 glm::vec3 Bsdf::eval_diffuse(const glm::vec3& wo, const glm::vec3& wi) const {

@@ -30,6 +30,9 @@ struct BsdfSample {
 class Bsdf {
  public:
   explicit Bsdf(const BsdfParams& params);
+  // The same BSDF with the dielectric layer's albedo toward `wo` computed once: the integrator
+  // evaluates, samples and weighs one wo per hit several times (the same numbers as without).
+  Bsdf(const BsdfParams& params, const glm::vec3& wo);
 
   // f(wo, wi) without the cosine factor; zero when either direction is below the surface.
   glm::vec3 eval(const glm::vec3& wo, const glm::vec3& wi) const;
@@ -52,8 +55,10 @@ class Bsdf {
   // pdf() for wi and wo above the surface, with the lobe choice already known.
   float mixture_pdf(const glm::vec3& wo, const glm::vec3& wi, float p_specular) const;
 
-  // The dielectric layer's albedo per channel: specular * (E(mu) + (F0 - 0.04) S(mu)).
+  // The dielectric layer's albedo per channel: specular * (E(mu) + (F0 - 0.04) S(mu)); the
+  // stored value when cos_theta is the constructor's wo.z.
   glm::vec3 layer(float cos_theta) const;
+  glm::vec3 layer_of(float cos_theta) const;
 
   BsdfParams params_;
   float alpha_;
@@ -64,6 +69,8 @@ class Bsdf {
   glm::vec3 diffuse_{0.0f};   // (1 - metallic) base / (pi (1 - E_avg)), see bsdf.cpp
   float diffuse_weight_ = 0;  // (1 - metallic) * mean(base): the diffuse lobe's share estimate
   DielectricSpecularAlbedo::Slice layer_albedo_;  // E(mu) of the dielectric layer at this roughness
+  float wo_cos_ = -2.0f;          // the wo.z whose layer albedo is stored (-2: none)
+  glm::vec3 wo_layer_{0.0f};
 };
 
 }  // namespace ddish::trace

@@ -116,6 +116,20 @@ DielectricSpecularAlbedo::Slice DielectricSpecularAlbedo::slice(float roughness)
   return slice;
 }
 
+DielectricSpecularAlbedo::AtRoughness DielectricSpecularAlbedo::at(float roughness) const {
+  int r;
+  AtRoughness a;
+  locate(roughness_coordinate(roughness), kRoughnessNodes, r, a.slice.t_);
+  const float tr = a.slice.t_;
+  a.slice.row0_ = &e_[r * kCosNodes];
+  a.slice.row1_ = &e_[(r + 1) * kCosNodes];
+  a.slice.slope0_ = &s_[r * kCosNodes];
+  a.slice.slope1_ = &s_[(r + 1) * kCosNodes];
+  a.average = e_avg_[r] + tr * (e_avg_[r + 1] - e_avg_[r]);
+  a.average_slope = s_avg_[r] + tr * (s_avg_[r + 1] - s_avg_[r]);
+  return a;
+}
+
 float DielectricSpecularAlbedo::Slice::operator()(float cos_theta) const {
   int c;
   float tc;
@@ -132,6 +146,17 @@ float DielectricSpecularAlbedo::Slice::slope(float cos_theta) const {
   const float s0 = lerp_row(slope0_, c, tc);
   const float s1 = lerp_row(slope1_, c, tc);
   return s0 + t_ * (s1 - s0);
+}
+
+glm::vec2 DielectricSpecularAlbedo::Slice::with_slope(float cos_theta) const {
+  int c;
+  float tc;
+  locate(std::cbrt(std::clamp(cos_theta, 0.0f, 1.0f)), kCosNodes, c, tc);
+  const float e0 = lerp_row(row0_, c, tc);
+  const float e1 = lerp_row(row1_, c, tc);
+  const float s0 = lerp_row(slope0_, c, tc);
+  const float s1 = lerp_row(slope1_, c, tc);
+  return {e0 + t_ * (e1 - e0), s0 + t_ * (s1 - s0)};
 }
 
 float DielectricSpecularAlbedo::directional(float cos_theta, float roughness) const {

@@ -29,6 +29,8 @@ class DielectricSpecularAlbedo {
    public:
     float operator()(float cos_theta) const;
     float slope(float cos_theta) const;
+    // Both at once, {E, S}: one cube root and one node search for the two (the BSDF's case).
+    glm::vec2 with_slope(float cos_theta) const;
 
    private:
     friend class DielectricSpecularAlbedo;
@@ -39,6 +41,14 @@ class DielectricSpecularAlbedo {
     float t_ = 0.0f;
   };
   Slice slice(float roughness) const;
+  // slice(), average() and average_slope() of one roughness from one node search (a BSDF's
+  // construction, at every hit).
+  struct AtRoughness {
+    Slice slice;
+    float average = 0.0f;
+    float average_slope = 0.0f;
+  };
+  AtRoughness at(float roughness) const;
 
   // E(mu, roughness), bilinear in (cbrt(mu), log(alpha)); both are clamped to [0, 1]. Its error
   // against integrate() is below 0.007 everywhere (worst near mu = 0.003, roughness 0.05; where

@@ -19,11 +19,6 @@ glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
   return v / std::sqrt(len2);
 }
 
-template <typename T>
-T interpolate(const std::vector<T>& attr, const std::uint32_t* idx, float u, float v) {
-  return attr[idx[0]] * (1.0f - u - v) + attr[idx[1]] * u + attr[idx[2]] * v;
-}
-
 // Texture lod for a footprint (its texture-independent part computed once per hit), or the
 // fixed level when one is asked for. A slot's footprint in UV units scales with the square root
 // of its UV set's area (per world area) and of its transform's area scale.
@@ -32,11 +27,12 @@ struct LodRule {
   float cos_theta = 1.0f;
   float world_area = 0.0f;
   const scene::Mesh* mesh = nullptr;
+  const TriangleRecord* tri = nullptr;
   int prim = -1;
   int fixed = -1;
   float lod(const MipTexture& t, const scene::TextureSlot& slot) const {
     if (fixed >= 0) return static_cast<float>(fixed);
-    const float area = uv_area(*mesh, prim, slot.texcoord) * slot.transform.area_scale();
+    const float area = uv_area(*tri, *mesh, prim, slot.texcoord) * slot.transform.area_scale();
     return t.lod_for_footprint_log2(MipTexture::footprint_log2(cone_width, cos_theta, area, world_area));
   }
 };
@@ -47,6 +43,15 @@ WorldTriangle world_triangle(const scene::Mesh& mesh, const glm::mat4& xf, int p
   const std::uint32_t* idx = &mesh.indices[static_cast<std::size_t>(prim) * 3];
   auto w = [&](std::uint32_t i) { return glm::vec3(xf * glm::vec4(mesh.positions[i], 1.0f)); };
   return {w(idx[0]), w(idx[1]), w(idx[2])};
+}
+
+WorldTriangle world_triangle(const TriangleRecord& tri, const glm::mat4& xf) {
+  auto w = [&](const glm::vec3& p) { return glm::vec3(xf * glm::vec4(p, 1.0f)); };
+  return {w(tri.p[0]), w(tri.p[1]), w(tri.p[2])};
+}
+
+float uv_area(const TriangleRecord& tri, const scene::Mesh& mesh, int prim, int texcoord) {
+  return texcoord == 1 ? uv_area(mesh, prim, 1) : tri.uv_area;  // Mesh::uv_set's rule
 }
 
 float uv_area(const scene::Mesh& mesh, int prim, int texcoord) {
@@ -68,18 +73,26 @@ glm::vec2 slot_uv(const scene::Mesh& mesh, const scene::TextureSlot& slot, int p
   return slot.transform.apply(uv);
 }
 
+glm::vec2 slot_uv(const TriangleRecord& tri, const scene::Mesh& mesh, const scene::TextureSlot& slot, int prim,
+                  const glm::vec3& w) {
+  if (slot.texcoord == 1) return slot_uv(mesh, slot, prim, w);  // Mesh::uv_set's rule
+  glm::vec2 uv(0.0f);
+  if (tri.has(TriangleRecord::kUvs)) uv = tri.uv[0] * w.x + tri.uv[1] * w.y + tri.uv[2] * w.z;
+  return slot.transform.apply(uv);
+}
+
 glm::vec4 vertex_color(const scene::Mesh& mesh, int prim, const glm::vec3& w) {
   if (mesh.colors.size() != mesh.positions.size()) return glm::vec4(1.0f);
   const std::uint32_t* idx = &mesh.indices[static_cast<std::size_t>(prim) * 3];
   return mesh.colors[idx[0]] * w.x + mesh.colors[idx[1]] * w.y + mesh.colors[idx[2]] * w.z;
 }
 
-float alpha_at(const scene::Material& material, const TextureSet& textures, const scene::Mesh& mesh, int prim,
-               float u, float v, float lod) {
+float alpha_at(const scene::Material& material, const TextureSet& textures, const scene::Mesh& mesh,
+               const TriangleRecord& tri, int prim, float u, float v, float lod) {
   const glm::vec3 w(1.0f - u - v, u, v);
   float alpha = material.base_color.a * vertex_color(mesh, prim, w).a;
   if (const MipTexture* tex = textures.get(material.base_color_texture.texture)) {
-    const glm::vec2 uv = slot_uv(mesh, material.base_color_texture, prim, w);
+    const glm::vec2 uv = slot_uv(tri, mesh, material.base_color_texture, prim, w);
     alpha *= tex->sample(uv, lod, false, wrap_of(material.base_color_texture)).a;
   }
   return alpha;
@@ -88,13 +101,13 @@ float alpha_at(const scene::Material& material, const TextureSet& textures, cons
 SurfacePoint make_surface_point(const HitInput& hit, const TextureSet& textures) {
   const scene::Mesh& mesh = *hit.mesh;
   const scene::Material& mat = *hit.material;
-  const std::uint32_t* idx = &mesh.indices[static_cast<std::size_t>(hit.prim) * 3];
+  const TriangleRecord& rec = *hit.triangle;
   const float u = hit.u;
   const float v = hit.v;
   SurfacePoint sp;
 
   const InstanceTransform& xf = *hit.transform;
-  const WorldTriangle tri = world_triangle(mesh, xf.object_to_world, hit.prim);
+  const WorldTriangle tri = world_triangle(rec, xf.object_to_world);
   sp.position = tri.p0 * (1.0f - u - v) + tri.p1 * u + tri.p2 * v;
   sp.offset_scale =
       std::max({coordinate_magnitude(tri.p0), coordinate_magnitude(tri.p1), coordinate_magnitude(tri.p2)});
@@ -107,17 +120,17 @@ SurfacePoint make_surface_point(const HitInput& hit, const TextureSet& textures)
   const glm::mat3 m3(xf.object_to_world);
 
   glm::vec3 n_obj =
-      mesh.normals.size() == mesh.positions.size() ? interpolate(mesh.normals, idx, u, v) : glm::vec3(0.0f);
+      rec.has(TriangleRecord::kNormals) ? TriangleRecord::interpolate(rec.n, u, v) : glm::vec3(0.0f);
   glm::vec3 n = safe_normalize(xf.normal_matrix * n_obj, sp.ng);
   if (glm::dot(n, sp.ng) < 0.0f) n = -n;  // vertex normals against the winding: trust the winding
-  if (mesh.uvs.size() == mesh.positions.size()) sp.uv = interpolate(mesh.uvs, idx, u, v);
+  if (rec.has(TriangleRecord::kUvs)) sp.uv = TriangleRecord::interpolate(rec.uv, u, v);
 
   // Tangent frame: the interpolated glTF tangent, Gram-Schmidt against n; the bitangent's
   // handedness is the tangent's w, flipped by mirroring transforms (det < 0).
   glm::vec3 t(0.0f);
   float handed = 1.0f;
-  if (mesh.tangents.size() == mesh.positions.size()) {
-    const glm::vec4 t4 = interpolate(mesh.tangents, idx, u, v);
+  if (rec.has(TriangleRecord::kTangents)) {
+    const glm::vec4 t4 = TriangleRecord::interpolate(rec.t, u, v);
     t = m3 * glm::vec3(t4);
     handed = (t4.w < 0.0f ? -1.0f : 1.0f) * (xf.mirrored ? -1.0f : 1.0f);
   }
@@ -134,10 +147,11 @@ SurfacePoint make_surface_point(const HitInput& hit, const TextureSet& textures)
   rule.cos_theta = glm::dot(sp.ng, wo);
   rule.world_area = tri.area();
   rule.mesh = &mesh;
+  rule.tri = &rec;
   rule.prim = hit.prim;
   const glm::vec3 weights(1.0f - u - v, u, v);
   auto lookup = [&](const MipTexture& tex, const scene::TextureSlot& slot, bool srgb) {
-    return tex.sample(slot_uv(mesh, slot, hit.prim, weights), rule.lod(tex, slot), srgb, wrap_of(slot));
+    return tex.sample(slot_uv(rec, mesh, slot, hit.prim, weights), rule.lod(tex, slot), srgb, wrap_of(slot));
   };
 
   if (const MipTexture* tex = textures.get(mat.normal_texture.texture)) {

@@ -11,6 +11,7 @@
 
 #include "trace/bsdf.h"
 #include "trace/frame.h"
+#include "trace/triangle_record.h"
 
 namespace ddish::scene {
 struct Scene;
@@ -46,20 +47,26 @@ struct WorldTriangle {
   float area() const { return 0.5f * glm::length(cross()); }
 };
 WorldTriangle world_triangle(const scene::Mesh& mesh, const glm::mat4& xf, int prim);
+WorldTriangle world_triangle(const TriangleRecord& tri, const glm::mat4& xf);
 
 // UV area of a triangle in UV set `texcoord` (for mip selection: texels per metre).
 float uv_area(const scene::Mesh& mesh, int prim, int texcoord = 0);
+// The same from the triangle's record (UV0), or the mesh (UV1).
+float uv_area(const TriangleRecord& tri, const scene::Mesh& mesh, int prim, int texcoord);
 
 // The texture coordinate a slot reads at a point of triangle `prim` with vertex weights w
 // (w0 + w1 + w2 = 1): its UV set interpolated, then its KHR_texture_transform.
 glm::vec2 slot_uv(const scene::Mesh& mesh, const scene::TextureSlot& slot, int prim, const glm::vec3& w);
+// The same with UV0 read from the triangle's record.
+glm::vec2 slot_uv(const TriangleRecord& tri, const scene::Mesh& mesh, const scene::TextureSlot& slot, int prim,
+                  const glm::vec3& w);
 
 // COLOR_0 at a point of triangle `prim` with vertex weights w; white without vertex colours.
 glm::vec4 vertex_color(const scene::Mesh& mesh, int prim, const glm::vec3& w);
 
 // Base-colour alpha (factor × texture) at barycentrics (u, v) of a triangle, for alpha testing.
-float alpha_at(const scene::Material& material, const TextureSet& textures, const scene::Mesh& mesh, int prim,
-               float u, float v, float lod);
+float alpha_at(const scene::Material& material, const TextureSet& textures, const scene::Mesh& mesh,
+               const TriangleRecord& tri, int prim, float u, float v, float lod);
 
 struct SurfacePoint {
   glm::vec3 position{0.0f};        // world, from barycentrics (more precise than origin + t·dir)
@@ -77,6 +84,7 @@ struct HitInput {
   const scene::Mesh* mesh = nullptr;
   const scene::Material* material = nullptr;
   const InstanceTransform* transform = nullptr;
+  const TriangleRecord* triangle = nullptr;  // the record of mesh triangle `prim` (EmbreeScene::triangle)
   int prim = -1;
   float u = 0.0f, v = 0.0f;                // Embree barycentrics: p = (1-u-v) p0 + u p1 + v p2
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // the incoming ray's direction (unit)

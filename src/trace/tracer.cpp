@@ -28,6 +28,7 @@
 #include "trace/embree_scene.h"
 #include "trace/environment_light.h"
 #include "trace/lights.h"
+#include "trace/specular_albedo.h"
 #include "trace/surface.h"
 #include "trace/texture_lookup.h"
 
@@ -37,6 +38,9 @@ struct Tracer::Impl {
   Impl(const scene::Scene& s, const PathOptions& o)
       : scene(&s), textures(s), embree(s, textures), lights(s, textures), options(o) {
     if (s.environment_map) environment.emplace(s.environment_map);
+    // The BSDF's layer-albedo table (~0.1-0.2 s of quadrature) is built here rather than inside
+    // the first path, where it would land in the first probe update's or reference pass's time.
+    DielectricSpecularAlbedo::get();
   }
 
   const scene::Scene* scene;
@@ -83,6 +87,8 @@ const PathOptions& Tracer::options() const { return impl_->options; }
 void Tracer::set_options(const PathOptions& options) { impl_->options = options; }
 std::uint64_t Tracer::rays_traced() const { return impl_->rays.load(std::memory_order_relaxed); }
 void Tracer::reset_ray_count() { impl_->rays.store(0, std::memory_order_relaxed); }
+void Tracer::set_ray_recorder(RayRecorder* recorder) { impl_->embree.set_recorder(recorder); }
+const EmbreeScene& Tracer::embree_scene() const { return impl_->embree; }
 std::uint64_t Tracer::invalid_paths() const { return impl_->invalid.load(std::memory_order_relaxed); }
 
 PathSample Tracer::trace_path(const Ray& primary, Sampler& sampler) const {
@@ -123,10 +129,11 @@ PathSample Tracer::trace_path(const Ray& primary, Sampler& sampler) const {
       break;
     }
     cone_width += spread * hit.t;
-    const scene::Mesh& mesh =
-        scene.meshes[static_cast<std::size_t>(scene.instances[static_cast<std::size_t>(hit.instance)].mesh)];
+    const int mesh_index = scene.instances[static_cast<std::size_t>(hit.instance)].mesh;
+    const scene::Mesh& mesh = scene.meshes[static_cast<std::size_t>(mesh_index)];
     HitInput in;
     in.mesh = &mesh;
+    in.triangle = &im.embree.triangle(mesh_index, hit.prim);
     in.material = &scene.material_of(mesh);
     in.transform = &im.embree.transform(hit.instance);
     in.prim = hit.prim;
@@ -155,9 +162,9 @@ PathSample Tracer::trace_path(const Ray& primary, Sampler& sampler) const {
     if (sp.unlit) break;  // KHR_materials_unlit reflects nothing
     if (depth >= opt.max_bounces) break;
 
-    const Bsdf bsdf(sp.bsdf);
     const glm::vec3 wo = sp.shading.to_local(-ray.direction);
     if (wo.z <= 0.0f) break;  // exactly grazing: nothing is reflected
+    const Bsdf bsdf(sp.bsdf, wo);
     const glm::vec3 origin = offset_ray_origin(sp.position, sp.ng, sp.offset_scale);
 
     // Next-event estimation: every punctual light, then one point on the emissive triangles.

@@ -20,6 +20,9 @@ struct Scene;
 
 namespace ddish::trace {
 
+class EmbreeScene;
+class RayRecorder;
+
 struct Ray {
   glm::vec3 origin{0.0f};
   glm::vec3 direction{0.0f, 0.0f, -1.0f};  // unit length
@@ -68,6 +71,12 @@ class Tracer {
   // Rays cast so far (primary, bounce and shadow rays), for Mrays/s figures.
   std::uint64_t rays_traced() const;
   void reset_ray_count();
+  // Records every ray cast from now on into `recorder` (null: stop); bench/trace_floor replays
+  // them as the tracing floor. Not while trace_path runs.
+  void set_ray_recorder(RayRecorder* recorder);
+  // The Embree scene the paths are traced on, for replaying recorded rays on it.
+  const EmbreeScene& embree_scene() const;
+
   // Paths whose radiance came out NaN, infinite or negative; they return zero radiance instead.
   std::uint64_t invalid_paths() const;
 

@@ -289,6 +289,7 @@ TEST_P(RayOffset, NoSelfIntersection) {
     in.mesh = &s.meshes[0];
     in.material = &s.materials[0];
     in.transform = &embree.transform(hit.instance);
+    in.triangle = &embree.triangle(0, hit.prim);
     in.prim = hit.prim;
     in.u = hit.u;
     in.v = hit.v;
