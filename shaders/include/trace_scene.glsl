@@ -1,0 +1,77 @@
+// The GPU probe tracer's scene (src/trace_vk/scene_buffers.h writes these buffers; the structs
+// must match its C++ structs, std430): meshes in object space with their triangles in the
+// spatially sorted order the acceleration structures were built from, instances, materials,
+// the emissive triangles with their power CDF, punctual lights and the BSDF's albedo table.
+#ifndef DDISH_TRACE_SCENE_GLSL
+#define DDISH_TRACE_SCENE_GLSL
+
+#extension GL_EXT_ray_tracing : require
+
+struct TraceVertex {
+  vec4 position_u;  // object-space position, UV0.x
+  vec4 normal_v;    // object-space normal (zero: none), UV0.y
+};
+
+struct TraceMesh {
+  uint first_index;   // into indices (3 per triangle)
+  uint first_vertex;  // added to every index
+  uint triangle_count;
+  uint material;
+};
+
+struct TraceInstance {
+  mat4 object_to_world;
+  mat4 normal_matrix;   // inverse transpose of the upper 3x3 (in a mat4)
+  uint mesh;
+  int emissive_first;   // this instance's first triangle in the emissive list, or -1
+  uint mirrored;        // negative determinant: clockwise triangles face front
+  uint pad;
+};
+
+const uint MATERIAL_DOUBLE_SIDED = 1u;
+const uint MATERIAL_UNLIT = 2u;
+
+struct TraceMaterial {
+  vec4 base_color;
+  vec4 emission_metallic;       // emission (factor x strength), metallic
+  vec4 dielectric_f0_roughness; // the dielectric layer's F0, roughness
+  float specular;
+  uint flags;
+  float pad0, pad1;
+};
+
+struct EmissiveTriangle {
+  vec4 p0_area;
+  vec4 e1_magnitude;
+  vec4 e2_double_sided;  // w: 1 when double sided
+  vec4 normal_cdf;       // unit front normal; w: the CDF up to and including this triangle
+  vec4 radiance_prob;    // emitted radiance; w: the probability of picking this triangle
+};
+
+const uint LIGHT_DIRECTIONAL = 0u;
+const uint LIGHT_POINT = 1u;
+const uint LIGHT_SPOT = 2u;
+
+struct TraceLight {
+  vec4 position_type;     // w: LIGHT_*
+  vec4 direction_range;   // where the light travels (unit), range (0: none)
+  vec4 radiant;           // colour x intensity
+  vec4 spot;              // x: scale, y: offset of glTF's spot falloff
+};
+
+layout(set = 0, binding = 0) uniform accelerationStructureEXT scene_tlas;
+layout(std430, set = 0, binding = 3) readonly buffer Vertices { TraceVertex vertices[]; };
+layout(std430, set = 0, binding = 4) readonly buffer Indices { uint indices[]; };
+layout(std430, set = 0, binding = 5) readonly buffer Meshes { TraceMesh meshes[]; };
+layout(std430, set = 0, binding = 6) readonly buffer Instances { TraceInstance instances[]; };
+layout(std430, set = 0, binding = 7) readonly buffer Materials { TraceMaterial materials[]; };
+layout(std430, set = 0, binding = 8) readonly buffer Emissive { EmissiveTriangle emissive[]; };
+layout(std430, set = 0, binding = 9) readonly buffer Lights { TraceLight lights[]; };
+layout(std430, set = 0, binding = 10) readonly buffer AlbedoTable {
+  float albedo_e[ALBEDO_TABLE_SIZE];
+  float albedo_s[ALBEDO_TABLE_SIZE];
+  float albedo_e_avg[32];
+  float albedo_s_avg[32];
+};
+
+#endif  // DDISH_TRACE_SCENE_GLSL
