@@ -66,6 +66,7 @@
 #include "app/output_queue.h"
 #include "app/plan_report.h"
 #include "app/probe_setup.h"
+#include "app/tracer_choice.h"
 #include "app/probe_options.h"
 #include "app/remote_probes.h"
 #include "app/render_timings.h"
@@ -124,6 +125,7 @@ struct RenderArgs {
   std::string tonemap = "filmic";
   bool no_indirect = false;
   std::optional<std::uint32_t> device;
+  std::string tracer = "auto";  // --tracer (render's in-process probes)
   // `ddish view`: the probe stream's client is the probe source.
   std::string connect;   // empty: `ddish render`, in-process probes
   std::string baked;     // --probes FILE: the probes until a server answers
@@ -244,9 +246,13 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                      const std::optional<display::Calibration>& calibration, TimingsFile* timings) {
   const bool remote = !a.connect.empty();
   std::unique_ptr<InProcessParts> local;
-  if (!remote)
+  if (!remote) {
+    const TracerDecision tracer = choose_tracer(a.tracer, a.device, s);
+    std::fprintf(stderr, "%s: probe tracer %s\n", a.tag(), tracer.why.c_str());
     local = make_in_process(a.probe, a.schedule, s,
-                            frame_budget_ms(a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>()));
+                            frame_budget_ms(a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>()),
+                            tracer.kind, a.device);
+  }
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.baked, placement)
                                       : probes::ProbeVolume(placement.grid, a.probe.sh_order);
 
@@ -546,6 +552,7 @@ Action make_render(CLI::App& root) {
   add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
   add_warmup_options(*cmd, a->warmup);
+  add_tracer_option(*cmd, a->tracer);
   return [a]() { return run_render(*a); };
 }
 
