@@ -10,6 +10,7 @@
 #include "app/camera_options.h"
 #include "app/commands.h"
 #include "app/plan_report.h"
+#include "app/tracer_choice.h"
 #include "scene/environment_choice.h"
 #include "scene/features.h"
 #include "scene/framing.h"
@@ -55,7 +56,7 @@ const char* light_units(const scene::Scene& s) {
 
 nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
                        const scene::RenderPlan& plan, const scene::EnvironmentChoice& env,
-                       double seconds) {
+                       double seconds, const std::string& tracer) {
   using nlohmann::json;
   json j;
   j["path"] = s.path;
@@ -108,6 +109,7 @@ nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
     grid["bounds"] = {{"min", vec(s.sidecar.probe_bounds->min)},
                       {"max", vec(s.sidecar.probe_bounds->max)}};
   j["probe_grid"] = grid;
+  j["probe_tracer"] = tracer;  // what --tracer auto takes on the default device
   j["features"] = {{"glossy_materials", f.glossy_materials},
                    {"metal_materials", f.metal_materials},
                    {"textured_materials", f.textured_materials},
@@ -132,7 +134,7 @@ nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
 }
 
 void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scene::RenderPlan& plan,
-                const scene::EnvironmentChoice& env, double seconds) {
+                const scene::EnvironmentChoice& env, double seconds, const std::string& tracer) {
   fmt::print("{}  (loaded in {:.2f} s)\n", s.path, seconds);
   fmt::print("  triangles   {} (after instancing)\n", f.triangles);
   fmt::print("  instances   {} of {} meshes\n", f.instances, f.meshes);
@@ -173,6 +175,7 @@ void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scen
   } else {
     fmt::print("  probe grid  automatic (no sidecar counts)\n");
   }
+  fmt::print("  probe tracer {}\n", tracer);
   fmt::print("features\n");
   fmt::print(
       "  glossy {}, metal {}, textured {}, normal-mapped {}, masked {}, blended {}, "
@@ -208,9 +211,9 @@ Action make_info(CLI::App& root) {
     scene::SceneFeatures f = scene::analyze(s);
     scene::RenderPlan plan = scene::make_plan(f);
     if (opts->json)
-      fmt::print("{}\n", to_json(s, f, plan, env, seconds).dump(2));
+      fmt::print("{}\n", to_json(s, f, plan, env, seconds, auto_tracer_line(s)).dump(2));
     else
-      print_text(s, f, plan, env, seconds);
+      print_text(s, f, plan, env, seconds, auto_tracer_line(s));
     return 0;
   };
 }

@@ -47,6 +47,14 @@ TracerDecision choose_tracer(const std::string& choice, std::optional<std::uint3
   return {TracerKind::vulkan, "vulkan on " + info.name + " (auto)"};
 }
 
+std::string auto_tracer_line(const scene::Scene& scene) {
+  try {
+    return choose_tracer("auto", std::nullopt, scene).why;
+  } catch (const std::exception& e) {
+    return std::string("embree (auto: no usable Vulkan device: ") + e.what() + ")";
+  }
+}
+
 ProbeEngine::ProbeEngine(TracerKind kind, const scene::Scene& scene, const trace::PathOptions& path,
                          const probes::UpdateOptions& options, std::optional<std::uint32_t> device)
     : kind_(kind) {

@@ -47,6 +47,10 @@ struct TracerDecision {
 TracerDecision choose_tracer(const std::string& choice, std::optional<std::uint32_t> device,
                              const scene::Scene& scene);
 
+// What `--tracer auto` takes for this scene on the default device, for `ddish info`; never
+// throws (no usable Vulkan device: Embree).
+std::string auto_tracer_line(const scene::Scene& scene);
+
 // The in-process probe update for a decision: the Embree path tracer with probes::ProbeTracer,
 // or a ray-tracing Vulkan context of its own with trace_vk::VkProbeTracer.
 class ProbeEngine {
