@@ -10,6 +10,9 @@
 struct TraceVertex {
   vec4 position_u;  // object-space position, UV0.x
   vec4 normal_v;    // object-space normal (zero: none), UV0.y
+  vec4 tangent;     // glTF tangent, w handedness (zero: none)
+  vec4 color;       // COLOR_0 (white: none)
+  vec4 uv1;         // TEXCOORD_1 in xy
 };
 
 struct TraceMesh {
@@ -30,6 +33,17 @@ struct TraceInstance {
 
 const uint MATERIAL_DOUBLE_SIDED = 1u;
 const uint MATERIAL_UNLIT = 2u;
+const uint MATERIAL_MASK = 4u;
+const uint MATERIAL_BLEND = 8u;
+
+struct TextureSlot {
+  int texture;     // -1: none
+  uint texcoord;   // UV set 0 or 1
+  uint sampler_bits;    // wrap s | wrap t << 2 | mag << 4 | min << 5 | mip << 6
+  float area_scale;
+  vec4 row0;       // KHR_texture_transform: u' = dot(row0.xyz, (u, v, 1))
+  vec4 row1;
+};
 
 struct TraceMaterial {
   vec4 base_color;
@@ -37,7 +51,26 @@ struct TraceMaterial {
   vec4 dielectric_f0_roughness; // the dielectric layer's F0, roughness
   float specular;
   uint flags;
-  float pad0, pad1;
+  float alpha_cutoff;
+  float normal_scale;
+  TextureSlot base_color_texture;
+  TextureSlot metallic_roughness_texture;
+  TextureSlot normal_texture;
+  TextureSlot emissive_texture;
+};
+
+struct TraceTexture {
+  uint first_level;
+  uint levels;
+  float half_log2_texels;
+  uint pad;
+};
+
+struct TraceTextureLevel {
+  uint offset;
+  uint width;
+  uint height;
+  uint pad;
 };
 
 struct EmissiveTriangle {
@@ -46,6 +79,9 @@ struct EmissiveTriangle {
   vec4 e2_double_sided;  // w: 1 when double sided
   vec4 normal_cdf;       // unit front normal; w: the CDF up to and including this triangle
   vec4 radiance_prob;    // emitted radiance; w: the probability of picking this triangle
+  uint instance;         // the instance and primitive (for the emissive texture)
+  uint prim;
+  uint pad0, pad1;
 };
 
 const uint LIGHT_DIRECTIONAL = 0u;
@@ -59,7 +95,9 @@ struct TraceLight {
   vec4 spot;              // x: scale, y: offset of glTF's spot falloff
 };
 
+#ifndef TRACE_SCENE_NO_TLAS
 layout(set = 0, binding = 0) uniform accelerationStructureEXT scene_tlas;
+#endif
 layout(std430, set = 0, binding = 3) readonly buffer Vertices { TraceVertex vertices[]; };
 layout(std430, set = 0, binding = 4) readonly buffer Indices { uint indices[]; };
 layout(std430, set = 0, binding = 5) readonly buffer Meshes { TraceMesh meshes[]; };
@@ -73,5 +111,8 @@ layout(std430, set = 0, binding = 10) readonly buffer AlbedoTable {
   float albedo_e_avg[32];
   float albedo_s_avg[32];
 };
+layout(std430, set = 0, binding = 12) readonly buffer Textures { TraceTexture textures[]; };
+layout(std430, set = 0, binding = 13) readonly buffer TextureLevels { TraceTextureLevel texture_levels[]; };
+layout(std430, set = 0, binding = 14) readonly buffer Texels { uint texels[]; };
 
 #endif  // DDISH_TRACE_SCENE_GLSL

@@ -37,7 +37,7 @@ VkAccelerationStructureInstanceKHR to_vk_instance(const GpuInstance& g, std::uin
   v.mask = blas ? 0xFFu : 0u;     // a mesh without triangles is never hit
   v.instanceShaderBindingTableRecordOffset = 0;
   // Back faces are hit too: the integrator sees them (absorbing, counted for classification).
-  v.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR | VK_GEOMETRY_INSTANCE_FORCE_OPAQUE_BIT_KHR;
+  v.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
   v.accelerationStructureReference = blas;
   return v;
 }
@@ -69,6 +69,7 @@ AccelerationStructure::~AccelerationStructure() {
 SceneAcceleration::SceneAcceleration(const gpu::Device& device, const RtFunctions& rt,
                                      gpu::CommandRunner& runner, const gpu::Buffer& vertices,
                                      const gpu::Buffer& indices, const std::vector<GpuMesh>& meshes,
+                                     const std::vector<GpuMaterial>& materials,
                                      const std::vector<GpuInstance>& instances)
     : device_(device), rt_(rt) {
   const VkDeviceSize alignment = scratch_alignment(device);
@@ -86,7 +87,8 @@ SceneAcceleration::SceneAcceleration(const gpu::Device& device, const RtFunction
     VkAccelerationStructureGeometryKHR& g = geometries[m];
     g = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
     g.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
-    g.flags = VK_GEOMETRY_OPAQUE_BIT_KHR;
+    const bool alpha = (materials[mesh.material].flags & (kMaterialMask | kMaterialBlend)) != 0;
+    g.flags = alpha ? VkGeometryFlagsKHR(0) : VkGeometryFlagsKHR(VK_GEOMETRY_OPAQUE_BIT_KHR);
     VkAccelerationStructureGeometryTrianglesDataKHR& t = g.geometry.triangles;
     t = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR};
     t.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;

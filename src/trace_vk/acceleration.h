@@ -22,6 +22,7 @@ class Device;
 namespace ddish::trace_vk {
 
 struct GpuInstance;
+struct GpuMaterial;
 struct GpuMesh;
 
 // An acceleration structure with its storage.
@@ -47,10 +48,11 @@ class AccelerationStructure {
 class SceneAcceleration {
  public:
   // vertices and indices: the scene layout's buffers (made with build-input and device-address
-  // usage); meshes and instances as in the layout. Builds everything and waits.
+  // usage); meshes, materials and instances as in the layout. A mesh whose material is MASK or
+  // BLEND is not opaque (its any-hit shaders run). Builds everything and waits.
   SceneAcceleration(const gpu::Device& device, const RtFunctions& rt, gpu::CommandRunner& runner,
-                    const gpu::Buffer& vertices, const gpu::Buffer& indices,
-                    const std::vector<GpuMesh>& meshes, const std::vector<GpuInstance>& instances);
+                    const gpu::Buffer& vertices, const gpu::Buffer& indices, const std::vector<GpuMesh>& meshes,
+                    const std::vector<GpuMaterial>& materials, const std::vector<GpuInstance>& instances);
 
   // Rebuilds the top level for moved instances (the same instances, new transforms).
   void update(gpu::CommandRunner& runner, const std::vector<GpuInstance>& instances);

@@ -9,6 +9,7 @@
 #include "trace/ggx.h"
 #include "trace/specular_albedo.h"
 #include "trace/surface.h"
+#include "trace/texture_lookup.h"
 
 namespace ddish::trace_vk {
 
@@ -26,20 +27,22 @@ std::uint32_t spread_bits(std::uint32_t v) {
   return v;
 }
 
-bool has_texture(const scene::Material& m) {
-  return m.base_color_texture || m.metallic_roughness_texture || m.normal_texture || m.emissive_texture;
+GpuTextureSlot slot_of(const scene::TextureSlot& slot, std::size_t texture_count) {
+  GpuTextureSlot g;
+  g.texture = slot.texture >= 0 && static_cast<std::size_t>(slot.texture) < texture_count ? slot.texture : -1;
+  g.texcoord = slot.texcoord == 1 ? 1u : 0u;
+  g.sampler = std::uint32_t(slot.wrap_s) | (std::uint32_t(slot.wrap_t) << 2) | (std::uint32_t(slot.mag_filter) << 4) |
+              (std::uint32_t(slot.min_filter) << 5) | (std::uint32_t(slot.mip_filter) << 6);
+  g.area_scale = slot.transform.area_scale();
+  g.row0 = glm::vec4(slot.transform.row0(), 0.0f);
+  g.row1 = glm::vec4(slot.transform.row1(), 0.0f);
+  return g;
 }
 
 }  // namespace
 
 std::string unsupported_features(const scene::Scene& s) {
   if (s.environment_map) return "an environment map (--environment)";
-  for (const scene::Mesh& mesh : s.meshes) {
-    const scene::Material& m = s.material_of(mesh);
-    if (has_texture(m)) return "textures (material '" + m.name + "')";
-    if (m.alpha_mode != scene::AlphaMode::Opaque) return "alpha mask or blend (material '" + m.name + "')";
-    if (!mesh.colors.empty()) return "vertex colours (mesh '" + mesh.name + "')";
-  }
   return {};
 }
 
@@ -76,12 +79,18 @@ SceneLayout SceneLayout::build(const scene::Scene& s) {
     g.first_vertex = static_cast<std::uint32_t>(L.vertices.size());
     g.triangle_count = static_cast<std::uint32_t>(mesh.triangle_count());
     g.material = static_cast<std::uint32_t>(L.materials.size());
-    const bool normals = mesh.normals.size() == mesh.positions.size();
-    const bool uvs = mesh.uvs.size() == mesh.positions.size();
-    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const std::size_t n = mesh.positions.size();
+    const bool normals = mesh.normals.size() == n;
+    const bool uvs = mesh.uvs.size() == n;
+    const bool uvs1 = mesh.uvs1.size() == n;
+    const bool tangents = mesh.tangents.size() == n;
+    const bool colors = mesh.colors.size() == n;
+    for (std::size_t v = 0; v < n; ++v) {
       const glm::vec2 uv = uvs ? mesh.uvs[v] : glm::vec2(0.0f);
       L.vertices.push_back({glm::vec4(mesh.positions[v], uv.x),
-                            glm::vec4(normals ? mesh.normals[v] : glm::vec3(0.0f), uv.y)});
+                            glm::vec4(normals ? mesh.normals[v] : glm::vec3(0.0f), uv.y),
+                            tangents ? mesh.tangents[v] : glm::vec4(0.0f), colors ? mesh.colors[v] : glm::vec4(1.0f),
+                            glm::vec4(uvs1 ? mesh.uvs1[v] : glm::vec2(0.0f), 0.0f, 0.0f)});
     }
     const std::vector<std::uint32_t> sorted = spatially_sorted_indices(mesh);
     L.indices.insert(L.indices.end(), sorted.begin(), sorted.end());
@@ -93,7 +102,15 @@ SceneLayout SceneLayout::build(const scene::Scene& s) {
     gm.emission_metallic = glm::vec4(m.emission(), m.metallic);
     gm.dielectric_f0_roughness = glm::vec4(m.dielectric_f0(), m.roughness);
     gm.specular = m.specular;
-    gm.flags = (m.double_sided ? kMaterialDoubleSided : 0u) | (m.unlit ? kMaterialUnlit : 0u);
+    gm.flags = (m.double_sided ? kMaterialDoubleSided : 0u) | (m.unlit ? kMaterialUnlit : 0u) |
+               (m.alpha_mode == scene::AlphaMode::Mask ? kMaterialMask : 0u) |
+               (m.alpha_mode == scene::AlphaMode::Blend ? kMaterialBlend : 0u);
+    gm.alpha_cutoff = m.alpha_cutoff;
+    gm.normal_scale = m.normal_scale;
+    gm.base_color_texture = slot_of(m.base_color_texture, s.textures.size());
+    gm.metallic_roughness_texture = slot_of(m.metallic_roughness_texture, s.textures.size());
+    gm.normal_texture = slot_of(m.normal_texture, s.textures.size());
+    gm.emissive_texture = slot_of(m.emissive_texture, s.textures.size());
     L.materials.push_back(gm);
   }
 
@@ -114,6 +131,31 @@ SceneLayout SceneLayout::build(const scene::Scene& s) {
     slope_avg.push_back(table.average_slope(roughness));
   }
   for (const auto* part : {&e, &slope, &e_avg, &slope_avg}) L.albedo.insert(L.albedo.end(), part->begin(), part->end());
+
+  // The CPU tracer's mip chains, read back texel by texel through MipTexture's public lookup
+  // (codes are exact: a texel decodes to code / 255), so both tracers filter the same texels.
+  const trace::TextureSet set(s);
+  for (std::size_t t = 0; t < set.size(); ++t) {
+    const trace::MipTexture& tex = *set.get(static_cast<int>(t));
+    GpuTexture g;
+    g.first_level = static_cast<std::uint32_t>(L.texture_levels.size());
+    g.levels = static_cast<std::uint32_t>(tex.levels());
+    g.half_log2_texels = 0.5f * std::log2(float(tex.width(0)) * float(tex.height(0)));
+    for (int level = 0; level < tex.levels(); ++level) {
+      GpuTextureLevel l;
+      l.offset = static_cast<std::uint32_t>(L.texels.size());
+      l.width = static_cast<std::uint32_t>(tex.width(level));
+      l.height = static_cast<std::uint32_t>(tex.height(level));
+      L.texture_levels.push_back(l);
+      for (int y = 0; y < tex.height(level); ++y)
+        for (int x = 0; x < tex.width(level); ++x) {
+          const glm::vec4 c = tex.texel(level, x, y, false) * 255.0f + 0.5f;
+          L.texels.push_back(std::uint32_t(c.r) | (std::uint32_t(c.g) << 8) | (std::uint32_t(c.b) << 16) |
+                             (std::uint32_t(c.a) << 24));
+        }
+    }
+    L.textures.push_back(g);
+  }
 
   L.place(s);
   return L;
@@ -153,6 +195,8 @@ void SceneLayout::place(const scene::Scene& s) {
           t.e2_double_sided = glm::vec4(p2 - p0, mat.double_sided ? 1.0f : 0.0f);
           t.normal_cdf = glm::vec4(area > 0.0f ? c / len : glm::vec3(0.0f, 0.0f, 1.0f), 0.0f);
           t.radiance_prob = glm::vec4(mat.emission(), 0.0f);
+          t.instance = static_cast<std::uint32_t>(instances.size());
+          t.prim = k;
           double p = double(area) * luminance(mat.emission()) * (mat.double_sided ? 2.0 : 1.0);
           power.push_back(std::isfinite(p) && p > 0.0 ? p : 0.0);
           emissive.push_back(t);

@@ -22,8 +22,11 @@ struct Mesh;
 namespace ddish::trace_vk {
 
 struct GpuVertex {
-  glm::vec4 position_u{0.0f};
-  glm::vec4 normal_v{0.0f};
+  glm::vec4 position_u{0.0f};  // object-space position, UV0.x
+  glm::vec4 normal_v{0.0f};    // object-space normal (zero: none), UV0.y
+  glm::vec4 tangent{0.0f};     // glTF tangent, w handedness (zero: none)
+  glm::vec4 color{1.0f};       // COLOR_0 (white: none)
+  glm::vec4 uv1{0.0f};         // TEXCOORD_1 in xy
 };
 
 struct GpuMesh {
@@ -44,6 +47,20 @@ struct GpuInstance {
 
 inline constexpr std::uint32_t kMaterialDoubleSided = 1u;
 inline constexpr std::uint32_t kMaterialUnlit = 2u;
+inline constexpr std::uint32_t kMaterialMask = 4u;
+inline constexpr std::uint32_t kMaterialBlend = 8u;
+
+// A material's texture slot: the texture (-1: none), its UV set, addressing and filters
+// (packed: wrap s | wrap t << 2 | mag << 4 | min << 5 | mip << 6, the scene enums' values), and
+// KHR_texture_transform as the rows of its 2 x 3 matrix with the area scale.
+struct GpuTextureSlot {
+  std::int32_t texture = -1;
+  std::uint32_t texcoord = 0;
+  std::uint32_t sampler = 0;
+  float area_scale = 1.0f;
+  glm::vec4 row0{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::vec4 row1{0.0f, 1.0f, 0.0f, 0.0f};
+};
 
 struct GpuMaterial {
   glm::vec4 base_color{1.0f};
@@ -51,7 +68,24 @@ struct GpuMaterial {
   glm::vec4 dielectric_f0_roughness{0.04f, 0.04f, 0.04f, 1.0f};
   float specular = 1.0f;
   std::uint32_t flags = 0;
-  float pad0 = 0.0f, pad1 = 0.0f;
+  float alpha_cutoff = 0.5f;
+  float normal_scale = 1.0f;
+  GpuTextureSlot base_color_texture, metallic_roughness_texture, normal_texture, emissive_texture;
+};
+
+// A texture's mip chain in the texel buffer: its first level in the level list and its count.
+struct GpuTexture {
+  std::uint32_t first_level = 0;
+  std::uint32_t levels = 0;
+  float half_log2_texels = 0.0f;  // log2 of sqrt(texels at level 0), trace::MipTexture's
+  std::uint32_t pad = 0;
+};
+
+struct GpuTextureLevel {
+  std::uint32_t offset = 0;  // first texel in the texel buffer
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t pad = 0;
 };
 
 struct GpuEmissive {
@@ -60,6 +94,9 @@ struct GpuEmissive {
   glm::vec4 e2_double_sided{0.0f};
   glm::vec4 normal_cdf{0.0f};
   glm::vec4 radiance_prob{0.0f};
+  std::uint32_t instance = 0;  // for the emissive texture: the instance and its primitive
+  std::uint32_t prim = 0;
+  std::uint32_t pad0 = 0, pad1 = 0;
 };
 
 struct GpuLight {
@@ -72,8 +109,8 @@ struct GpuLight {
 // The albedo table's size: trace::DielectricSpecularAlbedo's 32 x 32 nodes.
 inline constexpr int kAlbedoNodes = 32;
 
-// What the GPU tracer does not do yet, for this scene ("" when it can trace it): textures,
-// alpha mask and blend, vertex colours and environment maps. Callers refuse the scene with it.
+// What the GPU tracer does not do yet, for this scene ("" when it can trace it): environment
+// maps. Callers refuse the scene with it.
 std::string unsupported_features(const scene::Scene& scene);
 
 // The triangles of `mesh` (indices, 3 per triangle) in Morton order of their centroids.
@@ -89,6 +126,10 @@ struct SceneLayout {
   std::vector<GpuLight> lights;
   // E (32 x 32, row = roughness node), dE/dF0 (32 x 32), E_avg (32), dE_avg/dF0 (32).
   std::vector<float> albedo;
+  // trace::TextureSet's mip chains, texel for texel (RGBA8 packed, R in the low byte).
+  std::vector<GpuTexture> textures;
+  std::vector<GpuTextureLevel> texture_levels;
+  std::vector<std::uint32_t> texels;
 
   // The whole layout of a posed scene.
   static SceneLayout build(const scene::Scene& scene);

@@ -31,7 +31,7 @@ constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 constexpr VkBufferUsageFlags kBuildInput = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                            VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
                                            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-constexpr std::uint32_t kRtBindings = 12;  // trace_scene.glsl and probe_trace.rgen
+constexpr std::uint32_t kRtBindings = 15;  // trace_scene.glsl and probe_trace.rgen
 
 // The shaders' per-work-item records (probe_trace.rgen, probe_project.comp).
 struct ProbeWork {
@@ -95,9 +95,12 @@ struct VkProbeTracer::Impl {
     meshes = make_buffer(d, runner, layout.meshes, kStorage);
     materials = make_buffer(d, runner, layout.materials, kStorage);
     albedo = make_buffer(d, runner, layout.albedo, kStorage);
+    textures = make_buffer(d, runner, layout.textures, kStorage);
+    texture_levels = make_buffer(d, runner, layout.texture_levels, kStorage);
+    texels = make_buffer(d, runner, layout.texels, kStorage);
     place_buffers();
     acceleration = std::make_unique<SceneAcceleration>(d, rt, runner, vertices, indices, layout.meshes,
-                                                       layout.instances);
+                                                       layout.materials, layout.instances);
     make_rt_pipeline();
     project = std::make_unique<gpu::ComputePipeline>(d, gpu::ShaderModule::load(d, "probe_project.comp"),
                                                      gpu::ComputePipelineDesc{.storage_buffers = 6,
@@ -124,7 +127,8 @@ struct VkProbeTracer::Impl {
   SceneLayout layout;
   trace::PathOptions path;
   glm::vec3 sky;
-  gpu::Buffer vertices, indices, meshes, materials, albedo, instances, emissive, lights;
+  gpu::Buffer vertices, indices, meshes, materials, albedo, textures, texture_levels, texels, instances, emissive,
+      lights;
   std::unique_ptr<SceneAcceleration> acceleration;
 
   gpu::DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout> set_layout;
@@ -155,7 +159,7 @@ void VkProbeTracer::Impl::make_rt_pipeline() {
     bindings[i].descriptorType =
         i == 0 ? VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     bindings[i].descriptorCount = 1;
-    bindings[i].stageFlags = VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+    bindings[i].stageFlags = VK_SHADER_STAGE_RAYGEN_BIT_KHR | VK_SHADER_STAGE_ANY_HIT_BIT_KHR;
   }
   VkDescriptorSetLayoutCreateInfo set_info{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   set_info.bindingCount = kRtBindings;
@@ -178,12 +182,16 @@ void VkProbeTracer::Impl::make_rt_pipeline() {
   const gpu::ShaderModule miss = gpu::ShaderModule::load(device, "probe_trace.rmiss");
   const gpu::ShaderModule shadow_miss = gpu::ShaderModule::load(device, "probe_shadow.rmiss");
   const gpu::ShaderModule closest = gpu::ShaderModule::load(device, "probe_trace.rchit");
-  std::array<VkPipelineShaderStageCreateInfo, 4> stages{};
-  const std::array<std::pair<VkShaderStageFlagBits, VkShaderModule>, 4> modules = {{
+  const gpu::ShaderModule any = gpu::ShaderModule::load(device, "probe_trace.rahit");
+  const gpu::ShaderModule shadow_any = gpu::ShaderModule::load(device, "probe_shadow.rahit");
+  std::array<VkPipelineShaderStageCreateInfo, 6> stages{};
+  const std::array<std::pair<VkShaderStageFlagBits, VkShaderModule>, 6> modules = {{
       {VK_SHADER_STAGE_RAYGEN_BIT_KHR, raygen.handle()},
       {VK_SHADER_STAGE_MISS_BIT_KHR, miss.handle()},
       {VK_SHADER_STAGE_MISS_BIT_KHR, shadow_miss.handle()},
       {VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR, closest.handle()},
+      {VK_SHADER_STAGE_ANY_HIT_BIT_KHR, any.handle()},
+      {VK_SHADER_STAGE_ANY_HIT_BIT_KHR, shadow_any.handle()},
   }};
   for (std::size_t i = 0; i < stages.size(); ++i) {
     stages[i] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -191,14 +199,16 @@ void VkProbeTracer::Impl::make_rt_pipeline() {
     stages[i].module = modules[i].second;
     stages[i].pName = "main";
   }
-  std::array<VkRayTracingShaderGroupCreateInfoKHR, 4> groups{};
+  // Groups: raygen, path miss, shadow miss, then two hit groups: path rays (closest hit and
+  // any-hit, SBT offset 0) and shadow rays (any-hit only, SBT offset 1).
+  std::array<VkRayTracingShaderGroupCreateInfoKHR, 5> groups{};
   for (std::uint32_t i = 0; i < groups.size(); ++i) {
     groups[i] = {VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR};
     groups[i].type = i < 3 ? VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR
                            : VK_RAY_TRACING_SHADER_GROUP_TYPE_TRIANGLES_HIT_GROUP_KHR;
     groups[i].generalShader = i < 3 ? i : VK_SHADER_UNUSED_KHR;
     groups[i].closestHitShader = i == 3 ? 3 : VK_SHADER_UNUSED_KHR;
-    groups[i].anyHitShader = VK_SHADER_UNUSED_KHR;
+    groups[i].anyHitShader = i == 3 ? 4 : i == 4 ? 5 : VK_SHADER_UNUSED_KHR;
     groups[i].intersectionShader = VK_SHADER_UNUSED_KHR;
   }
   VkRayTracingPipelineCreateInfoKHR info{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
@@ -229,7 +239,7 @@ void VkProbeTracer::Impl::make_rt_pipeline() {
   const VkDeviceSize miss_offset = raygen_size;
   const VkDeviceSize miss_size = align_up(2 * stride, base);
   const VkDeviceSize hit_offset = miss_offset + miss_size;
-  const VkDeviceSize hit_size = align_up(stride, base);
+  const VkDeviceSize hit_size = align_up(2 * stride, base);
   sbt = std::make_unique<gpu::Buffer>(
       device, hit_offset + hit_size + base,
       VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, gpu::MemoryUse::upload);
@@ -239,6 +249,7 @@ void VkProbeTracer::Impl::make_rt_pipeline() {
   sbt->write(handles.data() + 1 * handle_size, handle_size, shift + miss_offset);
   sbt->write(handles.data() + 2 * handle_size, handle_size, shift + miss_offset + stride);
   sbt->write(handles.data() + 3 * handle_size, handle_size, shift + hit_offset);
+  sbt->write(handles.data() + 4 * handle_size, handle_size, shift + hit_offset + stride);
   raygen_region = {address, raygen_size, raygen_size};
   miss_region = {address + miss_offset, stride, miss_size};
   hit_region = {address + hit_offset, stride, hit_size};
@@ -266,7 +277,7 @@ void VkProbeTracer::Impl::write_descriptors() {
   as.pAccelerationStructures = &tlas;
   const std::array<const gpu::Buffer*, kRtBindings - 1> buffers = {
       paths.get(), work.get(), &vertices, &indices, &meshes, &instances, &materials, &emissive, &lights, &albedo,
-      lattice.get()};
+      lattice.get(), &textures, &texture_levels, &texels};
   std::array<VkDescriptorBufferInfo, kRtBindings - 1> infos{};
   std::array<VkWriteDescriptorSet, kRtBindings> writes{};
   writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
