@@ -245,14 +245,12 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                      const FrameWriter& writer, std::uint64_t identity,
                      const std::optional<display::Calibration>& calibration, TimingsFile* timings) {
   const bool remote = !a.connect.empty();
-  std::unique_ptr<InProcessParts> local;
+  std::optional<TracerDecision> tracer;
   if (!remote) {
-    const TracerDecision tracer = choose_tracer(a.tracer, a.device, s);
-    std::fprintf(stderr, "%s: probe tracer %s\n", a.tag(), tracer.why.c_str());
-    local = make_in_process(a.probe, a.schedule, s,
-                            frame_budget_ms(a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>()),
-                            tracer.kind, a.device);
+    tracer = choose_tracer(a.tracer, a.device, s);
+    std::fprintf(stderr, "%s: probe tracer %s\n", a.tag(), tracer->why.c_str());
   }
+  const bool gpu_tracer = tracer && tracer->kind == TracerKind::vulkan;
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.baked, placement)
                                       : probes::ProbeVolume(placement.grid, a.probe.sh_order);
 
@@ -271,9 +269,19 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
         choice.profile && choice.profile->panel ? choice.profile->panel->width : 0,
         choice.profile && choice.profile->panel ? choice.profile->panel->height : 0, start, focal);
   }
+  // The GPU probe tracer shares the renderer's device (ray tracing switched on for it), so its
+  // probes stay on the device that draws them.
   gpu::Context gpu({.device_index = a.device,
                     .instance_extensions = live ? live->instance_extensions() : std::vector<std::string>{},
-                    .device_extensions = live ? LiveWindow::device_extensions() : std::vector<std::string>{}});
+                    .device_extensions = live ? LiveWindow::device_extensions() : std::vector<std::string>{},
+                    .ray_tracing = gpu_tracer});
+  // The in-process probe parts hold Vulkan objects when they trace on the GPU: made after the
+  // context, destroyed before it.
+  std::unique_ptr<InProcessParts> local;
+  if (tracer)
+    local = make_in_process(a.probe, a.schedule, s,
+                            frame_budget_ms(a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>()),
+                            tracer->kind, a.device, gpu_tracer ? &gpu.device() : nullptr);
   LiveAttachment attachment;  // the window's GPU half goes before the context
   check_file_size_limit(gpu.device().info());
   run.validation = gpu.instance().validation_enabled();

@@ -13,17 +13,17 @@ namespace ddish::app {
 
 InProcessParts::InProcessParts(const ProbeArgs& probe, const ScheduleArgs& schedule, const scene::Scene& s,
                                const trace::PathOptions& path, double budget, TracerKind tracer,
-                               std::optional<std::uint32_t> device)
-    : engine(tracer, s, path, update_options(probe), device),
+                               std::optional<std::uint32_t> device, const gpu::Device* shared)
+    : engine(tracer, s, path, update_options(probe), device, shared),
       scheduler(scheduler_options(schedule, probe, budget)),
       budget_ms(budget) {}
 
 std::unique_ptr<InProcessParts> make_in_process(const ProbeArgs& probe, const ScheduleArgs& schedule,
                                                 const scene::Scene& s, double budget_ms, TracerKind tracer,
-                                                std::optional<std::uint32_t> device) {
+                                                std::optional<std::uint32_t> device, const gpu::Device* shared) {
   trace::PathOptions path_options;
   path_options.max_bounces = probe.bounces;
-  return std::make_unique<InProcessParts>(probe, schedule, s, path_options, budget_ms, tracer, device);
+  return std::make_unique<InProcessParts>(probe, schedule, s, path_options, budget_ms, tracer, device, shared);
 }
 
 probes::ProbeVolume starting_volume(const ProbeArgs& probe, const std::string& baked, const Placement& placement) {

@@ -38,14 +38,16 @@ struct InProcessParts {
   double budget_ms;
   InProcessParts(const ProbeArgs& probe, const ScheduleArgs& schedule, const scene::Scene& s,
                  const trace::PathOptions& path, double budget, TracerKind tracer,
-                 std::optional<std::uint32_t> device);
+                 std::optional<std::uint32_t> device, const gpu::Device* shared);
 };
 
 // The in-process parts for `probe` and `schedule` with a frame budget (0: none), tracing with
-// `tracer` (on Vulkan device `device` for TracerKind::vulkan).
+// `tracer` (for TracerKind::vulkan on `shared`, a device opened with ray tracing, else on a
+// context of its own on Vulkan device `device`).
 std::unique_ptr<InProcessParts> make_in_process(const ProbeArgs& probe, const ScheduleArgs& schedule,
                                                 const scene::Scene& s, double budget_ms, TracerKind tracer,
-                                                std::optional<std::uint32_t> device);
+                                                std::optional<std::uint32_t> device,
+                                                const gpu::Device* shared = nullptr);
 
 // The stream client's starting probes: the --probes volume (same grid and order as the scene's
 // placement, or an error), else none (direct light only until a server answers).

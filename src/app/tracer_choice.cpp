@@ -56,15 +56,19 @@ std::string auto_tracer_line(const scene::Scene& scene) {
 }
 
 ProbeEngine::ProbeEngine(TracerKind kind, const scene::Scene& scene, const trace::PathOptions& path,
-                         const probes::UpdateOptions& options, std::optional<std::uint32_t> device)
+                         const probes::UpdateOptions& options, std::optional<std::uint32_t> device,
+                         const gpu::Device* shared)
     : kind_(kind) {
   if (kind == TracerKind::embree) {
     tracer_ = std::make_unique<trace::Tracer>(scene, path);
     source_ = std::make_unique<probes::TracerSource>(*tracer_);
     cpu_ = std::make_unique<probes::ProbeTracer>(*source_, options);
   } else {
-    gpu_ = std::make_unique<gpu::Context>(gpu::ContextOptions{.device_index = device, .ray_tracing = true});
-    vk_ = std::make_unique<trace_vk::VkProbeTracer>(gpu_->device(), scene, path, options);
+    if (!shared) {
+      gpu_ = std::make_unique<gpu::Context>(gpu::ContextOptions{.device_index = device, .ray_tracing = true});
+      shared = &gpu_->device();
+    }
+    vk_ = std::make_unique<trace_vk::VkProbeTracer>(*shared, scene, path, options);
   }
 }
 

@@ -22,6 +22,7 @@ class App;
 }
 namespace ddish::gpu {
 class Context;
+class Device;
 }
 namespace ddish::scene {
 struct Scene;
@@ -52,11 +53,13 @@ TracerDecision choose_tracer(const std::string& choice, std::optional<std::uint3
 std::string auto_tracer_line(const scene::Scene& scene);
 
 // The in-process probe update for a decision: the Embree path tracer with probes::ProbeTracer,
-// or a ray-tracing Vulkan context of its own with trace_vk::VkProbeTracer.
+// or trace_vk::VkProbeTracer on `shared` (a device opened with ray tracing that outlives the
+// engine: the renderer's) or, without one, on a ray-tracing Vulkan context of its own.
 class ProbeEngine {
  public:
   ProbeEngine(TracerKind kind, const scene::Scene& scene, const trace::PathOptions& path,
-              const probes::UpdateOptions& options, std::optional<std::uint32_t> device);
+              const probes::UpdateOptions& options, std::optional<std::uint32_t> device,
+              const gpu::Device* shared = nullptr);
   ~ProbeEngine();
   ProbeEngine(const ProbeEngine&) = delete;
   ProbeEngine& operator=(const ProbeEngine&) = delete;
