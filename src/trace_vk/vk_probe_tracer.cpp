@@ -83,6 +83,11 @@ std::uint32_t backface_limit(std::uint32_t rays, float threshold) {
   return k;
 }
 
+// A batch's bounds: 4 Mi paths (64 MiB of path records), and work groups within every device's
+// minimum maxComputeWorkGroupCount (65535).
+constexpr std::size_t kMaxBatchPaths = std::size_t{1} << 22;
+constexpr std::size_t kMaxBatchProbes = 65535;
+
 std::uint32_t fold(std::uint64_t v) { return static_cast<std::uint32_t>(v ^ (v >> 32)); }
 
 }  // namespace
@@ -379,78 +384,82 @@ probes::UpdateStats VkProbeTracer::update(probes::ProbeVolume& volume, std::span
                                               options_.reference_samples ? options_.reference_samples : n);
       blends[w].backface_limit = s.unclassified() ? limit : ~0u;
     }
-    const auto count = static_cast<std::uint32_t>(work.size());
-    Impl::ensure(im.device, im.work, count * sizeof(ProbeWork), kStorage, gpu::MemoryUse::upload);
-    Impl::ensure(im.device, im.blends, count * sizeof(Blend), kStorage, gpu::MemoryUse::upload);
-    Impl::ensure(im.device, im.paths, VkDeviceSize(count) * n * sizeof(glm::vec4), kStorage,
-                 gpu::MemoryUse::device_local);
-    Impl::ensure(im.device, im.results, count * sizeof(Result), kStorage, gpu::MemoryUse::device_local);
-    Impl::ensure(im.device, im.results_readback, count * sizeof(Result), kStorage, gpu::MemoryUse::readback);
-    Impl::ensure(im.device, im.coefficients_readback, coefficient_bytes, kStorage, gpu::MemoryUse::readback);
-    im.work->write(items.data(), items.size() * sizeof(ProbeWork));
-    im.blends->write(blends.data(), blends.size() * sizeof(Blend));
-    im.write_descriptors();
+    // In batches: the projection's work groups (one per probe) and the path buffer are bounded.
+    const std::size_t batch = std::clamp<std::size_t>(kMaxBatchPaths / n, 1, kMaxBatchProbes);
+    for (std::size_t first = 0; first < work.size(); first += batch) {
+      const auto count = static_cast<std::uint32_t>(std::min(batch, work.size() - first));
+      Impl::ensure(im.device, im.work, count * sizeof(ProbeWork), kStorage, gpu::MemoryUse::upload);
+      Impl::ensure(im.device, im.blends, count * sizeof(Blend), kStorage, gpu::MemoryUse::upload);
+      Impl::ensure(im.device, im.paths, VkDeviceSize(count) * n * sizeof(glm::vec4), kStorage,
+                   gpu::MemoryUse::device_local);
+      Impl::ensure(im.device, im.results, count * sizeof(Result), kStorage, gpu::MemoryUse::device_local);
+      Impl::ensure(im.device, im.results_readback, count * sizeof(Result), kStorage, gpu::MemoryUse::readback);
+      Impl::ensure(im.device, im.coefficients_readback, coefficient_bytes, kStorage, gpu::MemoryUse::readback);
+      im.work->write(items.data() + first, count * sizeof(ProbeWork));
+      im.blends->write(blends.data() + first, count * sizeof(Blend));
+      im.write_descriptors();
 
-    const TraceParams tp{n,
-                         count,
-                         fold(options_.seed),
-                         fold(stats.frame),
-                         im.path.max_bounces,
-                         im.path.rr_min_bounces,
-                         im.path.indirect_clamp,
-                         static_cast<std::uint32_t>(im.layout.lights.size()),
-                         static_cast<std::uint32_t>(im.layout.emissive.size()),
-                         im.sky.r,
-                         im.sky.g,
-                         im.sky.b};
-    const ProjectParams pp{n, static_cast<std::uint32_t>(volume.sh_order()), count};
-    im.runner.run([&](VkCommandBuffer cmd) {
-      // Host writes and earlier submissions (uploads, builds, the last update) before the trace.
-      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
-                          VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
-      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, im.pipeline.get());
-      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, im.pipeline_layout.get(), 0, 1, &im.set, 0,
-                              nullptr);
-      vkCmdPushConstants(cmd, im.pipeline_layout.get(), VK_SHADER_STAGE_RAYGEN_BIT_KHR, 0, sizeof(tp), &tp);
-      im.rt.cmd_trace_rays(cmd, &im.raygen_region, &im.miss_region, &im.hit_region, &im.callable_region, n, count, 1);
-      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_SHADER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-      im.project->bind(cmd);
-      im.project->push(cmd, pp);
-      im.project->dispatch(cmd, count);
-      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-      gpu::copy_buffer(cmd, *im.results, *im.results_readback, count * sizeof(Result));
-      gpu::copy_buffer(cmd, *im.coefficients, *im.coefficients_readback, coefficient_bytes);
-      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-    });
+      const TraceParams tp{n,
+                           count,
+                           fold(options_.seed),
+                           fold(stats.frame),
+                           im.path.max_bounces,
+                           im.path.rr_min_bounces,
+                           im.path.indirect_clamp,
+                           static_cast<std::uint32_t>(im.layout.lights.size()),
+                           static_cast<std::uint32_t>(im.layout.emissive.size()),
+                           im.sky.r,
+                           im.sky.g,
+                           im.sky.b};
+      const ProjectParams pp{n, static_cast<std::uint32_t>(volume.sh_order()), count};
+      im.runner.run([&](VkCommandBuffer cmd) {
+        // Host writes and earlier submissions (uploads, builds, the last update) before the trace.
+        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                            VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, im.pipeline.get());
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, im.pipeline_layout.get(), 0, 1, &im.set, 0,
+                                nullptr);
+        vkCmdPushConstants(cmd, im.pipeline_layout.get(), VK_SHADER_STAGE_RAYGEN_BIT_KHR, 0, sizeof(tp), &tp);
+        im.rt.cmd_trace_rays(cmd, &im.raygen_region, &im.miss_region, &im.hit_region, &im.callable_region, n, count, 1);
+        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_SHADER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+        im.project->bind(cmd);
+        im.project->push(cmd, pp);
+        im.project->dispatch(cmd, count);
+        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        gpu::copy_buffer(cmd, *im.results, *im.results_readback, count * sizeof(Result));
+        gpu::copy_buffer(cmd, *im.coefficients, *im.coefficients_readback, coefficient_bytes);
+        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                            VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+      });
 
-    // The host volume follows what the GPU did: classification, counts, the blended averages.
-    const std::vector<Result> results = im.results_readback->read<Result>(count);
-    const auto* gpu_coefficients = static_cast<const glm::vec3*>(im.coefficients_readback->mapped());
-    for (std::size_t w = 0; w < work.size(); ++w) {
-      const std::uint32_t p = work[w];
-      const Result& r = results[w];
-      stats.rays += r.rays;
-      stats.invalid_samples += r.invalid;
-      probes::ProbeState& state = volume.state(p);
-      if (state.unclassified()) {
-        const probes::Classification c = probes::classify(r.backfaces, n, options_.backface_threshold);
-        state.backface_fraction = c.backface_fraction;
-        state.flags = std::uint8_t(state.flags & ~probes::kProbeUnclassified);
-        if (c.inside_geometry) {
-          volume.deactivate(p, true);
-          state.age = 0;
-          ++stats.newly_inactive;
-          continue;
+      // The host volume follows what the GPU did: classification, counts, the blended averages.
+      const std::vector<Result> results = im.results_readback->read<Result>(count);
+      const auto* gpu_coefficients = static_cast<const glm::vec3*>(im.coefficients_readback->mapped());
+      for (std::size_t w = 0; w < count; ++w) {
+        const std::uint32_t p = work[first + w];
+        const Result& r = results[w];
+        stats.rays += r.rays;
+        stats.invalid_samples += r.invalid;
+        probes::ProbeState& state = volume.state(p);
+        if (state.unclassified()) {
+          const probes::Classification c = probes::classify(r.backfaces, n, options_.backface_threshold);
+          state.backface_fraction = c.backface_fraction;
+          state.flags = std::uint8_t(state.flags & ~probes::kProbeUnclassified);
+          if (c.inside_geometry) {
+            volume.deactivate(p, true);
+            state.age = 0;
+            ++stats.newly_inactive;
+            continue;
+          }
         }
+        state.updates += 1;
+        state.samples += n;
+        state.age = 0;
+        const auto dst = volume.coefficients(p);
+        std::memcpy(dst.data(), gpu_coefficients + std::size_t(p) * coeffs, coeffs * sizeof(glm::vec3));
       }
-      state.updates += 1;
-      state.samples += n;
-      state.age = 0;
-      const auto dst = volume.coefficients(p);
-      std::memcpy(dst.data(), gpu_coefficients + std::size_t(p) * coeffs, coeffs * sizeof(glm::vec3));
     }
   }
   im.mirrored = &volume;

@@ -72,6 +72,29 @@ TEST_F(VkSmoke, UniformSkyEqualsTheCpuTracer) {
   }
 }
 
+TEST_F(VkSmoke, UpdatesLargerThanOneBatchGoInBatches) {
+  // 2^21 paths per probe: a batch (4 Mi paths) holds two probes, so three take two batches.
+  scene::Scene s;
+  s.sidecar.environment = glm::vec3(1.0f, 2.0f, 0.5f);
+  const ProbeGrid grid(Aabb{{0.0f, 0.0f, 0.0f}, {2.0f, 0.0f, 0.0f}}, {3, 1, 1});
+  const UpdateOptions options{.samples = 1u << 21, .seed = 4};
+  ProbeVolume gpu_volume(grid, 1), cpu_volume(grid, 1);
+  VkProbeTracer tracer(device(), s, {}, options);
+  const probes::UpdateStats stats = tracer.update_all(gpu_volume);
+  EXPECT_EQ(stats.probes_traced, 3u);
+  EXPECT_EQ(stats.rays, 3u << 21);
+  trace::Tracer cpu(s);
+  probes::TracerSource source(cpu);
+  probes::ProbeTracer(source, options).update(cpu_volume);
+  for (std::uint32_t p = 0; p < 3; ++p) {
+    EXPECT_EQ(gpu_volume.state(p).updates, 1u) << p;
+    for (int i = 0; i < 4; ++i)
+      for (int c = 0; c < 3; ++c)  // two million fp32 terms summed in different orders
+        EXPECT_NEAR(gpu_volume.coefficients(p)[i][c], cpu_volume.coefficients(p)[i][c], 1e-3f * s.sidecar.environment[c])
+            << "probe " << p << " coefficient " << i;
+  }
+}
+
 TEST_F(VkSmoke, ProbeInsideClosedBoxIsInactiveAndItsNeighbourIsNot) {
   scene::Scene s;
   s.sidecar.environment = glm::vec3(1.0f);
