@@ -76,6 +76,8 @@ CASES = [
     ("render {bad}/huge_textures.gltf", "textures that decode to more than the memory free",
      "more than the"),
     ("info {bad}/truncated.glb", "a GLB cut off in its header"),
+    ("info {src}/tests/fuzz/corpus/glb/glb_draco_orientation_count.glb",
+     "a Draco stream that would keep libdraco busy for seconds (a fuzz finding)"),
     ("info {bad}/sidecar_counts.gltf", "a sidecar whose grid counts are a word"),
     ("info {bad}/sidecar_negative_sky.gltf", "a sidecar with negative sky radiance"),
     ("info {bad}/sidecar_not_json.gltf", "a sidecar that is not JSON"),

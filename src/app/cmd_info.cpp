@@ -1,4 +1,5 @@
 // `ddish info SCENE`: what a scene holds and what the renderer will leave out for it.
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -10,7 +11,10 @@
 #include "app/camera_options.h"
 #include "app/commands.h"
 #include "app/plan_report.h"
+#include "app/probe_options.h"
+#include "app/probe_setup.h"
 #include "app/tracer_choice.h"
+#include "probes/surface_cells.h"
 #include "scene/environment_choice.h"
 #include "scene/features.h"
 #include "scene/framing.h"
@@ -192,6 +196,16 @@ void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scen
   for (const auto& w : s.warnings) fmt::print("warning: {}\n", w);
 }
 
+// Classification's second phase as render would run it with its default grid: the probes with
+// no surface near them join what is left out. A scene with no geometry has no grid to tell of.
+void add_empty_probes(scene::Scene& s, scene::RenderPlan& plan) {
+  if (s.bounds().empty()) return;
+  const Placement placement = place_probes(ProbeArgs{}, s);
+  const std::vector<bool> near = probes::probes_near_surfaces(placement.grid, s);
+  if (const auto n = std::uint32_t(std::count(near.begin(), near.end(), false)); n > 0)
+    plan.left_out.push_back(empty_probes_item(n, placement.grid));
+}
+
 Action make_info(CLI::App& root) {
   auto opts = std::make_shared<InfoOptions>();
   CLI::App* cmd = root.add_subcommand("info", "scene summary, features, what will be left out");
@@ -210,6 +224,7 @@ Action make_info(CLI::App& root) {
     const scene::EnvironmentChoice env = scene::apply_environment(s, std::nullopt);
     scene::SceneFeatures f = scene::analyze(s);
     scene::RenderPlan plan = scene::make_plan(f);
+    add_empty_probes(s, plan);
     if (opts->json)
       fmt::print("{}\n", to_json(s, f, plan, env, seconds, auto_tracer_line(s)).dump(2));
     else

@@ -19,6 +19,7 @@
 #include "app/commands.h"
 #include "app/lighting_options.h"
 #include "app/probe_options.h"
+#include "app/probe_setup.h"
 #include "app/tracer_choice.h"
 #include "io/atomic_file.h"
 #include "probes/probe_grid.h"
@@ -76,6 +77,7 @@ int run_probes(const ProbesArgs& a) {
              placement.how, grid.spacing().x, grid.spacing().y, grid.spacing().z, a.probe.sh_order);
 
   probes::ProbeVolume volume(grid, a.probe.sh_order);
+  const std::uint32_t left_out = leave_out_empty_probes(volume, s);
   const probes::ProbeUpdater& probe_tracer = engine.updater();
 
   std::uint64_t rays = 0, paths = 0, invalid = 0;
@@ -97,8 +99,9 @@ int run_probes(const ProbesArgs& a) {
   fmt::print("rays     {} traced ({} paths, {:.2f} rays per path) in {:.3f} s: {:.2f} Mrays/s\n",
              rays, paths, paths ? double(rays) / double(paths) : 0.0, seconds,
              seconds > 0.0 ? double(rays) / seconds * 1e-6 : 0.0);
-  fmt::print("active   {} of {} probes, inactive {} ({} inside geometry)\n", volume.active_count(),
-             volume.probe_count(), volume.inactive_count(), volume.inside_geometry_count());
+  fmt::print("active   {} of {} probes, inactive {} ({} inside geometry, {} left out: no surface near)\n",
+             volume.active_count(), volume.probe_count(), volume.inactive_count(),
+             volume.inside_geometry_count(), left_out);
   fmt::print("encoding {} ({} fp16, {} shared-exponent probes; {} bytes per probe, {} bytes)\n",
              probes::encoding_name(packed.encoding), packed.half_probes, packed.shared_exp_probes,
              packed.words_per_probe * 2u, packed.bytes());

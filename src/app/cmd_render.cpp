@@ -199,7 +199,7 @@ void print_progress(const FrameReport& r, int frames) {
                  static_cast<unsigned long long>(c.stream->rejected));
   if (r.frame == 0 && c.probe_updates > 0)
     std::fprintf(stderr, "render: %u of %u probes inside geometry: never traced or uploaded%s\n",
-                 c.probes_inactive, c.probes_active + c.probes_inactive,
+                 c.probes_inside_geometry, c.probes_active + c.probes_inactive,
                  c.probes_unclassified > 0
                      ? fmt::format(" ({} not classified yet: their first update will tell)",
                                    c.probes_unclassified)
@@ -253,6 +253,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   const bool gpu_tracer = tracer && tracer->kind == TracerKind::vulkan;
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.baked, placement)
                                       : probes::ProbeVolume(placement.grid, a.probe.sh_order);
+  const std::uint32_t empty_probes = remote ? 0 : leave_out_empty_probes(volume, s);
 
   GpuRun run;
   // The live window opens before the GPU context: its surface extensions go into the instance.
@@ -335,7 +336,9 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                  local->budget_ms > 0.0 ? fmt::format("{:g} ms per frame", local->budget_ms).c_str() : "none");
   }
   std::fprintf(stderr, "%s: left out\n", a.tag());
-  for (const std::string& line : left_out_lines(scene::make_plan(scene::analyze(s)), "  "))
+  scene::RenderPlan plan = scene::make_plan(scene::analyze(s));
+  if (empty_probes > 0) plan.left_out.push_back(empty_probes_item(empty_probes, grid));
+  for (const std::string& line : left_out_lines(plan, "  "))
     std::fprintf(stderr, "%s\n", line.c_str());
 
   // The views are rebuilt from the posed scene every frame: an animated camera node moves the

@@ -44,6 +44,7 @@
 #include "app/commands.h"
 #include "app/lighting_options.h"
 #include "app/probe_options.h"
+#include "app/probe_setup.h"
 #include "app/probe_source.h"
 #include "app/scene_identity.h"
 #include "app/schedule_options.h"
@@ -178,6 +179,10 @@ int run_serve(const ServeArgs& a) {
   const double budget_ms = frame_budget_ms(a.schedule, std::nullopt);
   probes::Scheduler scheduler(scheduler_options(a.schedule, a.probe, budget_ms));
   probes::ProbeVolume volume(placement.grid, a.probe.sh_order);
+  if (const std::uint32_t n = leave_out_empty_probes(volume, s); n > 0) {
+    const scene::PlanItem item = empty_probes_item(n, volume.grid());
+    std::fprintf(stderr, "serve: left out %s: %s\n", item.what.c_str(), item.why.c_str());
+  }
   InProcessProbes probes_source(
       engine, scheduler,
       [&](const probes::FramePlan& plan) {

@@ -122,6 +122,13 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
                             std::nullopt);
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream.baked, placement)
                                       : probes::ProbeVolume(placement.grid, a.probe.sh_order);
+  if (!remote) {
+    const std::uint32_t n = leave_out_empty_probes(volume, s);
+    if (n > 0) {
+      const scene::PlanItem item = empty_probes_item(n, volume.grid());
+      std::fprintf(stderr, "xr: left out %s: %s\n", item.what.c_str(), item.why.c_str());
+    }
+  }
   {
     gpu::ContextOptions co;
     co.validation = validation;

@@ -33,6 +33,7 @@ struct FrameCounts {
   std::uint32_t probes_uploaded = 0;  // what the renderer copied (it may copy the whole volume
                                       // when many changed: ProbeTextures::kFullUploadFraction)
   std::uint32_t probes_active = 0;     // after this frame's update
+  std::uint32_t probes_inside_geometry = 0;  // of the inactive ones: found inside geometry
   std::uint32_t probes_inactive = 0;   // inside geometry (or otherwise inactive) after it
   std::uint32_t probes_never_updated = 0;  // active probes no update has reached yet
   std::uint32_t oldest_probe_age = 0;      // the largest age of an active probe after it

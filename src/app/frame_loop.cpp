@@ -31,6 +31,7 @@ void count_probes(const probes::ProbeVolume& volume, FrameCounts& counts) {
   for (std::uint32_t i = 0; i < volume.probe_count(); ++i) {
     const probes::ProbeState& s = volume.state(i);
     if (s.unclassified()) ++counts.probes_unclassified;
+    if (s.inside_geometry()) ++counts.probes_inside_geometry;
     if (!s.active()) {
       ++counts.probes_inactive;
       continue;

@@ -7,6 +7,7 @@
 
 #include "app/remote_probes.h"
 #include "net/curve_keys.h"
+#include "probes/surface_cells.h"
 #include "probes/volume_file.h"
 
 namespace ddish::app {
@@ -24,6 +25,16 @@ std::unique_ptr<InProcessParts> make_in_process(const ProbeArgs& probe, const Sc
   trace::PathOptions path_options;
   path_options.max_bounces = probe.bounces;
   return std::make_unique<InProcessParts>(probe, schedule, s, path_options, budget_ms, tracer, device, shared);
+}
+
+std::uint32_t leave_out_empty_probes(probes::ProbeVolume& volume, scene::Scene& s) {
+  return probes::leave_out_probes(volume, probes::probes_near_surfaces(volume.grid(), s));
+}
+
+scene::PlanItem empty_probes_item(std::uint32_t left_out, const probes::ProbeGrid& grid) {
+  const glm::ivec3 c = grid.counts();
+  return {fmt::format("{} of the grid's {} probes ({} x {} x {})", left_out, grid.probe_count(), c.x, c.y, c.z),
+          "no surface within half a cell of the cells they light: never traced, uploaded or sent"};
 }
 
 probes::ProbeVolume starting_volume(const ProbeArgs& probe, const std::string& baked, const Placement& placement) {

@@ -15,6 +15,7 @@
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
 #include "probes/scheduler.h"
+#include "scene/features.h"
 #include "trace/tracer.h"
 
 namespace ddish::app {
@@ -48,6 +49,14 @@ std::unique_ptr<InProcessParts> make_in_process(const ProbeArgs& probe, const Sc
                                                 const scene::Scene& s, double budget_ms, TracerKind tracer,
                                                 std::optional<std::uint32_t> device,
                                                 const gpu::Device* shared = nullptr);
+
+// Classification's second phase for an in-process volume: the probes with no surface near them
+// are left out before the first update (probes/surface_cells.h). Returns how many.
+std::uint32_t leave_out_empty_probes(probes::ProbeVolume& volume, scene::Scene& s);
+
+// What `ddish info` and the run logs list of them among what is left out:
+// "N of the grid's M probes (X x Y x Z): no surface within half a cell of ...".
+scene::PlanItem empty_probes_item(std::uint32_t left_out, const probes::ProbeGrid& grid);
 
 // The stream client's starting probes: the --probes volume (same grid and order as the scene's
 // placement, or an error), else none (direct light only until a server answers).

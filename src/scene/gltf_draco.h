@@ -4,6 +4,9 @@
 // accessor pointed at its primitive's Draco buffer view (read_gltf below), and once the buffers
 // are loaded decodes every Draco primitive into new buffers that its indices and attribute
 // accessors then read (decode_draco), through the same checked accessor code as any file.
+// libdraco trusts counts in the stream (a 1.3 KB file can keep it busy for seconds), so each
+// primitive is decoded in a child process with a deadline (io/child_process.h): a stream that
+// takes longer than 2 s + 10 s per MiB of compressed data is a LoadError, not a hang.
 #pragma once
 
 #include <string>

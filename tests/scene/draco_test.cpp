@@ -76,3 +76,20 @@ TEST(Draco, BoxEqualsItsPlainTwin) {
   EXPECT_EQ(draco.material_of(draco.meshes[0]).base_color, plain.material_of(plain.meshes[0]).base_color);
   EXPECT_TRUE(draco.warnings.empty()) << draco.warnings.front();
 }
+
+// A stream that keeps libdraco busy for seconds (found by the GLB fuzz campaign: a count of
+// texture-coordinate orientations read from the mutated stream, up to 2^31) is decoded in a
+// child process and stopped at the deadline (2 s + 10 s per MiB, so 2.0 s here): one LoadError
+// that says so, where before the load took 9.6 s and fuzzing stopped on it.
+TEST(Draco, AStreamThatDecodesForTooLongIsOneError) {
+  const std::string path = std::string(DDISH_SOURCE_DIR) + "/tests/fuzz/corpus/glb/glb_draco_orientation_count.glb";
+  try {
+    scene::load_scene(path);
+    FAIL() << "the file loaded";
+  } catch (const scene::LoadError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("2.0 s were not enough to decode"), std::string::npos) << what;
+    EXPECT_NE(what.find("(a corrupt or hostile stream)"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << "one line";
+  }
+}
