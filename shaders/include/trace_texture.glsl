@@ -50,32 +50,43 @@ vec4 tex_texel(TraceTextureLevel l, int x, int y, bool srgb, uint sampler_bits) 
 vec4 tex_sample_level(TraceTexture t, vec2 uv, uint level, bool srgb, uint sampler_bits, uint filter_mode) {
   const TraceTextureLevel l = texture_levels[t.first_level + level];
   uv = vec2(tex_reduce(uv.x, sampler_bits & 3u), tex_reduce(uv.y, (sampler_bits >> 2) & 3u));
-  if (filter_mode == FILTER_NEAREST)
-    return tex_texel(l, int(floor(uv.x * float(l.width))), int(floor(uv.y * float(l.height))), srgb, sampler_bits);
-  const float fx = uv.x * float(l.width) - 0.5;
-  const float fy = uv.y * float(l.height) - 0.5;
-  const float x0 = floor(fx), y0 = floor(fy);
-  const float tx = fx - x0, ty = fy - y0;
-  const int xi = int(x0), yi = int(y0);
-  const vec4 a = mix(tex_texel(l, xi, yi, srgb, sampler_bits), tex_texel(l, xi + 1, yi, srgb, sampler_bits), tx);
-  const vec4 b = mix(tex_texel(l, xi, yi + 1, srgb, sampler_bits), tex_texel(l, xi + 1, yi + 1, srgb, sampler_bits), tx);
-  return mix(a, b, ty);
+  // Nearest: the texel whose square holds uv, once. Linear: texel centres at half-integers, the
+  // four around uv. One texel fetch in a loop keeps the shader small (CPU drivers inline all).
+  const bool nearest = filter_mode == FILTER_NEAREST;
+  const vec2 f = nearest ? uv * vec2(l.width, l.height) : uv * vec2(l.width, l.height) - 0.5;
+  const vec2 f0 = floor(f);
+  const vec2 frac = nearest ? vec2(0.0) : f - f0;
+  const ivec2 i0 = ivec2(f0);
+  vec4 corners[4];
+  const int count = nearest ? 1 : 4;
+  for (int k = 0; k < count; ++k) corners[k] = tex_texel(l, i0.x + (k & 1), i0.y + (k >> 1), srgb, sampler_bits);
+  if (nearest) return corners[0];
+  return mix(mix(corners[0], corners[1], frac.x), mix(corners[2], corners[3], frac.x), frac.y);
 }
 
-// trace::MipTexture::sample.
+// trace::MipTexture::sample: the level(s) and filter first, then one lookup per level.
 vec4 tex_sample(int index, vec2 uv, float lod, bool srgb, uint sampler_bits) {
   const TraceTexture t = textures[index];
   const float max_level = float(t.levels - 1u);
   lod = (isnan(lod) || isinf(lod)) ? 0.0 : clamp(lod, 0.0, max_level);
   const uint mag = (sampler_bits >> 4) & 1u, min_filter = (sampler_bits >> 5) & 1u, mip = (sampler_bits >> 6) & 3u;
-  if (lod <= 0.0) return tex_sample_level(t, uv, 0u, srgb, sampler_bits, mag);
-  if (mip == MIP_NONE) return tex_sample_level(t, uv, 0u, srgb, sampler_bits, min_filter);
-  if (mip == MIP_NEAREST) return tex_sample_level(t, uv, uint(floor(lod + 0.5)), srgb, sampler_bits, min_filter);
-  const uint l0 = uint(lod);
-  const float f = lod - float(l0);
-  const vec4 a = tex_sample_level(t, uv, l0, srgb, sampler_bits, min_filter);
-  if (f <= 0.0 || l0 + 1u >= t.levels) return a;
-  return mix(a, tex_sample_level(t, uv, l0 + 1u, srgb, sampler_bits, min_filter), f);
+  uint level = 0u;
+  uint filter_mode = min_filter;
+  float blend = 0.0;  // > 0: also the next level, by this much
+  if (lod <= 0.0) {
+    filter_mode = mag;
+  } else if (mip == MIP_NEAREST) {
+    level = uint(floor(lod + 0.5));
+  } else if (mip != MIP_NONE) {
+    level = uint(lod);
+    blend = level + 1u < t.levels ? lod - float(level) : 0.0;
+  }
+  vec4 result = vec4(0.0);
+  const int count = blend > 0.0 ? 2 : 1;
+  for (int k = 0; k < count; ++k)
+    result += tex_sample_level(t, uv, level + uint(k), srgb, sampler_bits, filter_mode) *
+              (k == 0 ? 1.0 - blend : blend);
+  return result;
 }
 
 // log2 of a ray-cone footprint in UV units (MipTexture::footprint_log2): -inf without one.
