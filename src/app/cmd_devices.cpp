@@ -42,6 +42,7 @@ void print_device(const gpu::DeviceInfo& d, bool is_default) {
                d.timestamp_period);
   else
     fmt::print("  timestamps             not supported\n");
+  fmt::print("  ray tracing            {}\n", d.ray_tracing ? "pipelines and acceleration structures (--tracer vulkan)" : "none");
   if (!d.usable()) fmt::print("  not usable             {}\n", d.unusable_reason());
 }
 

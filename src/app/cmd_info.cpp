@@ -13,6 +13,7 @@
 #include "app/plan_report.h"
 #include "app/probe_options.h"
 #include "app/probe_setup.h"
+#include "app/tracer_choice.h"
 #include "probes/surface_cells.h"
 #include "scene/environment_choice.h"
 #include "scene/features.h"
@@ -59,7 +60,7 @@ const char* light_units(const scene::Scene& s) {
 
 nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
                        const scene::RenderPlan& plan, const scene::EnvironmentChoice& env,
-                       double seconds) {
+                       double seconds, const std::string& tracer) {
   using nlohmann::json;
   json j;
   j["path"] = s.path;
@@ -116,6 +117,7 @@ nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
     grid["bounds"] = {{"min", vec(s.sidecar.probe_bounds->min)},
                       {"max", vec(s.sidecar.probe_bounds->max)}};
   j["probe_grid"] = grid;
+  j["probe_tracer"] = tracer;  // what --tracer auto takes on the default device
   j["features"] = {{"glossy_materials", f.glossy_materials},
                    {"metal_materials", f.metal_materials},
                    {"textured_materials", f.textured_materials},
@@ -140,7 +142,7 @@ nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
 }
 
 void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scene::RenderPlan& plan,
-                const scene::EnvironmentChoice& env, double seconds) {
+                const scene::EnvironmentChoice& env, double seconds, const std::string& tracer) {
   fmt::print("{}  (loaded in {:.2f} s)\n", s.path, seconds);
   fmt::print("  triangles   {} (after instancing)\n", f.triangles);
   fmt::print("  instances   {} of {} meshes\n", f.instances, f.meshes);
@@ -187,6 +189,7 @@ void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scen
   } else {
     fmt::print("  probe grid  automatic (no sidecar counts)\n");
   }
+  fmt::print("  probe tracer {}\n", tracer);
   fmt::print("features\n");
   fmt::print(
       "  glossy {}, metal {}, textured {}, normal-mapped {}, masked {}, blended {}, "
@@ -233,9 +236,9 @@ Action make_info(CLI::App& root) {
     scene::RenderPlan plan = scene::make_plan(f);
     add_empty_probes(s, plan);
     if (opts->json)
-      fmt::print("{}\n", to_json(s, f, plan, env, seconds).dump(2));
+      fmt::print("{}\n", to_json(s, f, plan, env, seconds, auto_tracer_line(s)).dump(2));
     else
-      print_text(s, f, plan, env, seconds);
+      print_text(s, f, plan, env, seconds, auto_tracer_line(s));
     return 0;
   };
 }

@@ -1,8 +1,8 @@
 // ddish probes SCENE [--grid X,Y,Z | --probe-spacing M] [--probe-samples N] [--bounces N]
 //                    [--updates K] [--hysteresis A] [--sh-order 1..4] [--seed N] [--out PATH]
-//                    [--sky R,G,B]
+//                    [--sky R,G,B] [--tracer auto|embree|vulkan]
 //
-// Places a probe volume in the scene, runs K probe updates with the path tracer (a line per
+// Places a probe volume in the scene, runs K probe updates with the probe tracer (a line per
 // update), and reports rays traced, Mrays/s, time, active and inactive probes and the packed
 // encoding; with --out it writes the volume (probes/volume_file.h) and PATH.json beside it.
 // Placement: --grid counts or --probe-spacing over the sidecar's probe_bounds (else the scene's
@@ -20,16 +20,15 @@
 #include "app/lighting_options.h"
 #include "app/probe_options.h"
 #include "app/probe_setup.h"
+#include "app/tracer_choice.h"
 #include "io/atomic_file.h"
 #include "probes/probe_grid.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
-#include "probes/tracer_source.h"
 #include "probes/volume_file.h"
 #include "probes/volume_packing.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
-#include "trace/tracer.h"
 
 namespace ddish::app {
 namespace {
@@ -40,6 +39,7 @@ struct ProbesArgs {
   LightingArgs lighting;  // --sky
   int updates = 1;
   std::string out;
+  std::string tracer = "auto";
 };
 
 void check(const ProbesArgs& a) {
@@ -62,13 +62,15 @@ int run_probes(const ProbesArgs& a) {
   Placement placement = place_probes(a.probe, s);
   const probes::ProbeGrid& grid = placement.grid;
 
+  const TracerDecision decision = choose_tracer(a.tracer, std::nullopt, s);
   t0 = std::chrono::steady_clock::now();
   trace::PathOptions path_options;
   path_options.max_bounces = a.probe.bounces;
-  trace::Tracer tracer(s, path_options);
+  ProbeEngine engine(decision.kind, s, path_options, update_options(a.probe), std::nullopt);
   const double build_s = seconds_since(t0);
   fmt::print("{}: {} triangles, loaded in {:.2f} s, tracer built in {:.2f} s\n", s.path,
              s.triangle_count(), load_s, build_s);
+  fmt::print("tracer   {}\n", decision.why);
   fmt::print("{}\n", environment);
   fmt::print("probes   {} x {} x {} = {} ({}), spacing {:.3g} x {:.3g} x {:.3g} m, L{} SH\n",
              grid.counts().x, grid.counts().y, grid.counts().z, grid.probe_count(),
@@ -76,13 +78,12 @@ int run_probes(const ProbesArgs& a) {
 
   probes::ProbeVolume volume(grid, a.probe.sh_order);
   const std::uint32_t left_out = leave_out_empty_probes(volume, s);
-  probes::TracerSource source(tracer);
-  probes::ProbeTracer probe_tracer(source, update_options(a.probe));
+  const probes::ProbeUpdater& probe_tracer = engine.updater();
 
   std::uint64_t rays = 0, paths = 0, invalid = 0;
   double seconds = 0.0;
   for (int k = 1; k <= a.updates; ++k) {
-    probes::UpdateStats u = probe_tracer.update(volume);
+    probes::UpdateStats u = probe_tracer.update_all(volume);
     rays += u.rays;
     paths += u.paths;
     invalid += u.invalid_samples;
@@ -125,6 +126,7 @@ Action make_probes(CLI::App& root) {
   add_lighting_options(*cmd, a->lighting, /*exposure=*/false);
   cmd->add_option("--updates", a->updates, "probe updates to run")->capture_default_str();
   cmd->add_option("--out", a->out, "write the volume here (and a JSON summary at PATH.json)");
+  add_tracer_option(*cmd, a->tracer);
   return [a]() { return run_probes(*a); };
 }
 

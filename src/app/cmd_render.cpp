@@ -66,6 +66,7 @@
 #include "app/output_queue.h"
 #include "app/plan_report.h"
 #include "app/probe_setup.h"
+#include "app/tracer_choice.h"
 #include "app/probe_options.h"
 #include "app/remote_probes.h"
 #include "app/render_timings.h"
@@ -124,6 +125,7 @@ struct RenderArgs {
   std::string tonemap = "filmic";
   bool no_indirect = false;
   std::optional<std::uint32_t> device;
+  std::string tracer = "auto";  // --tracer (render's in-process probes)
   // `ddish view`: the probe stream's client is the probe source.
   std::string connect;   // empty: `ddish render`, in-process probes
   std::string baked;     // --probes FILE: the probes until a server answers
@@ -243,10 +245,12 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
                      const FrameWriter& writer, std::uint64_t identity,
                      const std::optional<display::Calibration>& calibration, TimingsFile* timings) {
   const bool remote = !a.connect.empty();
-  std::unique_ptr<InProcessParts> local;
-  if (!remote)
-    local = make_in_process(a.probe, a.schedule, s,
-                            frame_budget_ms(a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>()));
+  std::optional<TracerDecision> tracer;
+  if (!remote) {
+    tracer = choose_tracer(a.tracer, a.device, s);
+    std::fprintf(stderr, "%s: probe tracer %s\n", a.tag(), tracer->why.c_str());
+  }
+  const bool gpu_tracer = tracer && tracer->kind == TracerKind::vulkan;
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.baked, placement)
                                       : probes::ProbeVolume(placement.grid, a.probe.sh_order);
   const std::uint32_t empty_probes = remote ? 0 : leave_out_empty_probes(volume, s);
@@ -266,9 +270,19 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
         choice.profile && choice.profile->panel ? choice.profile->panel->width : 0,
         choice.profile && choice.profile->panel ? choice.profile->panel->height : 0, start, focal);
   }
+  // The GPU probe tracer shares the renderer's device (ray tracing switched on for it), so its
+  // probes stay on the device that draws them.
   gpu::Context gpu({.device_index = a.device,
                     .instance_extensions = live ? live->instance_extensions() : std::vector<std::string>{},
-                    .device_extensions = live ? LiveWindow::device_extensions() : std::vector<std::string>{}});
+                    .device_extensions = live ? LiveWindow::device_extensions() : std::vector<std::string>{},
+                    .ray_tracing = gpu_tracer});
+  // The in-process probe parts hold Vulkan objects when they trace on the GPU: made after the
+  // context, destroyed before it.
+  std::unique_ptr<InProcessParts> local;
+  if (tracer)
+    local = make_in_process(a.probe, a.schedule, s,
+                            frame_budget_ms(a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>()),
+                            tracer->kind, a.device, gpu_tracer ? &gpu.device() : nullptr);
   LiveAttachment attachment;  // the window's GPU half goes before the context
   check_file_size_limit(gpu.device().info());
   run.validation = gpu.instance().validation_enabled();
@@ -549,6 +563,7 @@ Action make_render(CLI::App& root) {
   add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
   add_warmup_options(*cmd, a->warmup);
+  add_tracer_option(*cmd, a->tracer);
   return [a]() { return run_render(*a); };
 }
 

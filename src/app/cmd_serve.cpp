@@ -54,6 +54,7 @@
 #include "net/endpoint.h"
 #include "net/probe_server.h"
 #include "net/published_probes.h"
+#include "app/tracer_choice.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
 #include "probes/scheduler.h"
@@ -75,6 +76,7 @@ struct ServeArgs {
   ProbeArgs probe;
   ScheduleArgs schedule;
   LightingArgs lighting;  // --sky, --environment: the light the probes are traced in
+  std::string tracer = "auto";  // --tracer
   double fps = 30.0;
   double time = 0.0;
   int frames = 0;
@@ -171,9 +173,9 @@ int run_serve(const ServeArgs& a) {
 
   trace::PathOptions path_options;
   path_options.max_bounces = a.probe.bounces;
-  trace::Tracer tracer(s, path_options);
-  probes::TracerSource source(tracer);
-  probes::ProbeTracer probe_tracer(source, update_options(a.probe));
+  const TracerDecision tracer = choose_tracer(a.tracer, std::nullopt, s);
+  std::fprintf(stderr, "serve: probe tracer %s\n", tracer.why.c_str());
+  ProbeEngine engine(tracer.kind, s, path_options, update_options(a.probe), std::nullopt);
   const double budget_ms = frame_budget_ms(a.schedule, std::nullopt);
   probes::Scheduler scheduler(scheduler_options(a.schedule, a.probe, budget_ms));
   probes::ProbeVolume volume(placement.grid, a.probe.sh_order);
@@ -182,7 +184,7 @@ int run_serve(const ServeArgs& a) {
     std::fprintf(stderr, "serve: left out %s: %s\n", item.what.c_str(), item.why.c_str());
   }
   InProcessProbes probes_source(
-      tracer, probe_tracer, scheduler,
+      engine, scheduler,
       [&](const probes::FramePlan& plan) {
         return frame_update_options(a.schedule, a.probe, plan.samples, plan.hysteresis);
       },
@@ -345,6 +347,7 @@ Action make_serve(CLI::App& root) {
                   "N servers of the same scene and grid serve the whole volume")
       ->capture_default_str();
   add_lighting_options(*cmd, a->lighting, /*exposure=*/false);
+  add_tracer_option(*cmd, a->tracer);
   cmd->add_option("--timings", a->timings, "write a per-tick record as JSON here");
   cmd->add_option("--curve-secret", a->curve_secret, "the server's secret key (ddish keys): CurveZMQ on")
       ->check(CLI::ExistingFile);

@@ -117,7 +117,9 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
   const bool remote = !a.stream.connect.empty();
   // The budget comes from the runtime each frame; --budget-ms fixes it instead (0: none).
   std::unique_ptr<InProcessParts> local;
-  if (!remote) local = make_in_process(a.probe, a.schedule, s, a.schedule.budget_ms.value_or(0.0));
+  if (!remote)
+    local = make_in_process(a.probe, a.schedule, s, a.schedule.budget_ms.value_or(0.0), TracerKind::embree,
+                            std::nullopt);
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream.baked, placement)
                                       : probes::ProbeVolume(placement.grid, a.probe.sh_order);
   if (!remote) {

@@ -14,12 +14,11 @@ FrameLoop::FrameLoop(scene::Scene& scene, ProbeSource& probes, raster::Renderer&
                      ViewSource views)
     : scene_(scene), probes_(probes), renderer_(renderer), views_(std::move(views)) {}
 
-FrameLoop::FrameLoop(scene::Scene& scene, trace::Tracer& tracer,
-                     probes::ProbeTracer& probe_tracer, probes::Scheduler& scheduler,
+FrameLoop::FrameLoop(scene::Scene& scene, ProbeEngine& engine, probes::Scheduler& scheduler,
                      UpdateOptionsFor update_options, probes::ProbeVolume& volume,
                      raster::Renderer& renderer, ViewSource views)
     : scene_(scene),
-      owned_probes_(std::make_unique<InProcessProbes>(tracer, probe_tracer, scheduler,
+      owned_probes_(std::make_unique<InProcessProbes>(engine, scheduler,
                                                       std::move(update_options), volume)),
       probes_(*owned_probes_),
       renderer_(renderer),

@@ -119,8 +119,7 @@ class FrameLoop {
   // volume.
   FrameLoop(scene::Scene& scene, ProbeSource& probes, raster::Renderer& renderer, ViewSource views);
   // The in-process probe source (`ddish render`) over these parts.
-  FrameLoop(scene::Scene& scene, trace::Tracer& tracer, probes::ProbeTracer& probe_tracer,
-            probes::Scheduler& scheduler, UpdateOptionsFor update_options,
+  FrameLoop(scene::Scene& scene, ProbeEngine& engine, probes::Scheduler& scheduler, UpdateOptionsFor update_options,
             probes::ProbeVolume& volume, raster::Renderer& renderer, ViewSource views);
 
   // Runs the frames; `sink` (optional) gets the last frame, or every options.every-th;

@@ -13,18 +13,18 @@
 namespace ddish::app {
 
 InProcessParts::InProcessParts(const ProbeArgs& probe, const ScheduleArgs& schedule, const scene::Scene& s,
-                               const trace::PathOptions& path, double budget)
-    : tracer(s, path),
-      source(tracer),
-      probe_tracer(source, update_options(probe)),
+                               const trace::PathOptions& path, double budget, TracerKind tracer,
+                               std::optional<std::uint32_t> device, const gpu::Device* shared)
+    : engine(tracer, s, path, update_options(probe), device, shared),
       scheduler(scheduler_options(schedule, probe, budget)),
       budget_ms(budget) {}
 
 std::unique_ptr<InProcessParts> make_in_process(const ProbeArgs& probe, const ScheduleArgs& schedule,
-                                                const scene::Scene& s, double budget_ms) {
+                                                const scene::Scene& s, double budget_ms, TracerKind tracer,
+                                                std::optional<std::uint32_t> device, const gpu::Device* shared) {
   trace::PathOptions path_options;
   path_options.max_bounces = probe.bounces;
-  return std::make_unique<InProcessParts>(probe, schedule, s, path_options, budget_ms);
+  return std::make_unique<InProcessParts>(probe, schedule, s, path_options, budget_ms, tracer, device, shared);
 }
 
 std::uint32_t leave_out_empty_probes(probes::ProbeVolume& volume, scene::Scene& s) {
@@ -56,7 +56,7 @@ std::unique_ptr<ProbeSource> make_probe_source(InProcessParts* local, const Prob
                                                const char* tag) {
   if (local) {
     return std::make_unique<InProcessProbes>(
-        local->tracer, local->probe_tracer, local->scheduler,
+        local->engine, local->scheduler,
         [&probe, &schedule](const probes::FramePlan& plan) {
           return frame_update_options(schedule, probe, plan.samples, plan.hysteresis);
         },

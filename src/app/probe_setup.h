@@ -11,10 +11,10 @@
 #include "app/probe_options.h"
 #include "app/probe_source.h"
 #include "app/schedule_options.h"
+#include "app/tracer_choice.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
 #include "probes/scheduler.h"
-#include "probes/tracer_source.h"
 #include "scene/features.h"
 #include "trace/tracer.h"
 
@@ -32,20 +32,23 @@ struct StreamArgs {
   std::string relay;             // the frames through a ddish relay; empty: from each server
 };
 
-// The in-process probe half: path tracer, probe tracer, scheduler.
+// The in-process probe half: the probe tracer (--tracer's choice) and the scheduler.
 struct InProcessParts {
-  trace::Tracer tracer;
-  probes::TracerSource source;
-  probes::ProbeTracer probe_tracer;
+  ProbeEngine engine;
   probes::Scheduler scheduler;
   double budget_ms;
   InProcessParts(const ProbeArgs& probe, const ScheduleArgs& schedule, const scene::Scene& s,
-                 const trace::PathOptions& path, double budget);
+                 const trace::PathOptions& path, double budget, TracerKind tracer,
+                 std::optional<std::uint32_t> device, const gpu::Device* shared);
 };
 
-// The in-process parts for `probe` and `schedule` with a frame budget (0: none).
+// The in-process parts for `probe` and `schedule` with a frame budget (0: none), tracing with
+// `tracer` (for TracerKind::vulkan on `shared`, a device opened with ray tracing, else on a
+// context of its own on Vulkan device `device`).
 std::unique_ptr<InProcessParts> make_in_process(const ProbeArgs& probe, const ScheduleArgs& schedule,
-                                                const scene::Scene& s, double budget_ms);
+                                                const scene::Scene& s, double budget_ms, TracerKind tracer,
+                                                std::optional<std::uint32_t> device,
+                                                const gpu::Device* shared = nullptr);
 
 // Classification's second phase for an in-process volume: the probes with no surface near them
 // are left out before the first update (probes/surface_cells.h). Returns how many.

@@ -5,15 +5,13 @@
 
 #include "probes/probe_volume.h"
 #include "scene/scene.h"
-#include "trace/tracer.h"
 
 namespace ddish::app {
 
-InProcessProbes::InProcessProbes(trace::Tracer& tracer, probes::ProbeTracer& probe_tracer,
-                                 probes::Scheduler& scheduler, UpdateOptionsFor update_options,
-                                 probes::ProbeVolume& volume)
-    : tracer_(tracer),
-      probe_tracer_(probe_tracer),
+InProcessProbes::InProcessProbes(ProbeEngine& engine, probes::Scheduler& scheduler,
+                                 UpdateOptionsFor update_options, probes::ProbeVolume& volume)
+    : engine_(engine),
+      probe_tracer_(engine.updater()),
       scheduler_(scheduler),
       update_options_(std::move(update_options)),
       volume_(volume) {
@@ -41,14 +39,13 @@ void InProcessProbes::posed(const scene::Scene& scene, const std::vector<int>& m
                             metrics::FrameTimings& timings) {
   if (scene.animations.empty()) return;
   metrics::StageTimer timer(timings, "tracer_update");  // lights may move without any instance moving
-  tracer_.update(scene, moved);
+  engine_.posed(scene, moved);
 }
 
 ProbeStep InProcessProbes::update(const std::vector<scene::View>& views, bool enabled,
                                   metrics::FrameTimings& timings, FrameCounts& counts) {
   ProbeStep step;
   const std::uint64_t updates_before = volume_.frame();
-  const std::uint64_t rays_before = tracer_.rays_traced();
   if (enabled) {
     metrics::StageTimer timer(timings, "probe_update");
     step.plan = scheduler_.plan(volume_, views);
@@ -57,7 +54,7 @@ ProbeStep InProcessProbes::update(const std::vector<scene::View>& views, bool en
     counts.probes_traced = step.update.probes_traced;
   }
   counts.probe_updates = volume_.frame() - updates_before;
-  counts.probe_rays = tracer_.rays_traced() - rays_before;
+  counts.probe_rays = step.update.rays;
   step.changed = changed_probes(step.plan.probes);
   return step;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/frame_counts.h"
+#include "app/tracer_choice.h"
 #include "metrics/timing.h"
 #include "probes/probe_tracer.h"
 #include "probes/scheduler.h"
@@ -23,9 +24,6 @@ class ProbeVolume;
 }
 namespace ddish::scene {
 struct Scene;
-}
-namespace ddish::trace {
-class Tracer;
 }
 
 namespace ddish::app {
@@ -89,8 +87,7 @@ using UpdateOptionsFor = std::function<probes::UpdateOptions(const probes::Frame
 class InProcessProbes final : public ProbeSource {
  public:
   // Everything is borrowed and must outlive the source.
-  InProcessProbes(trace::Tracer& tracer, probes::ProbeTracer& probe_tracer,
-                  probes::Scheduler& scheduler, UpdateOptionsFor update_options,
+  InProcessProbes(ProbeEngine& engine, probes::Scheduler& scheduler, UpdateOptionsFor update_options,
                   probes::ProbeVolume& volume);
 
   probes::ProbeVolume& volume() override { return volume_; }
@@ -108,8 +105,8 @@ class InProcessProbes final : public ProbeSource {
   // last upload (found inside geometry), merged in increasing order.
   std::vector<std::uint32_t> changed_probes(const std::vector<std::uint32_t>& traced);
 
-  trace::Tracer& tracer_;
-  probes::ProbeTracer& probe_tracer_;
+  ProbeEngine& engine_;
+  probes::ProbeUpdater& probe_tracer_;
   probes::Scheduler& scheduler_;
   UpdateOptionsFor update_options_;
   probes::ProbeVolume& volume_;

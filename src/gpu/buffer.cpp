@@ -21,8 +21,16 @@ Buffer::Buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage
 
   VkMemoryRequirements requirements{};
   vkGetBufferMemoryRequirements(device.handle(), buffer, &requirements);
-  memory_ = DeviceMemory(device, requirements, use);
+  const bool addressed = (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0;
+  memory_ = DeviceMemory(device, requirements, use,
+                         addressed ? VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT : 0);
   check(vkBindBufferMemory(device.handle(), buffer, memory_.handle(), 0), "vkBindBufferMemory");
+}
+
+VkDeviceAddress Buffer::device_address() const {
+  VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+  info.buffer = buffer_.get();
+  return vkGetBufferDeviceAddress(buffer_.device(), &info);
 }
 
 void Buffer::check_range(VkDeviceSize bytes, VkDeviceSize offset) const {

@@ -20,6 +20,8 @@ class Buffer {
   Buffer() = default;
   // `usage` is what the buffer is for (storage, vertex, index, uniform...); transfer source and
   // destination are always added so that any buffer can be staged and read back. size > 0.
+  // With VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT (a device with bufferDeviceAddress, i.e.
+  // DeviceFeatures::ray_tracing) the memory is allocated for device addresses.
   Buffer(const Device& device, VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use);
 
   VkBuffer handle() const { return buffer_.get(); }
@@ -29,6 +31,8 @@ class Buffer {
   void* mapped() const { return memory_.mapped(); }
   const DeviceMemory& memory() const { return memory_; }
   VkDescriptorBufferInfo descriptor() const { return {buffer_.get(), 0, size_}; }
+  // The buffer's device address; only for buffers made with SHADER_DEVICE_ADDRESS usage.
+  VkDeviceAddress device_address() const;
 
   // Copies bytes in or out through the mapping. Throws GpuError when the buffer is not host
   // visible or the range leaves it. The GPU must not be using the range at the time.

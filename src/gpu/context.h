@@ -24,6 +24,7 @@ struct ContextOptions {
   // The window's surface extensions and VK_KHR_swapchain (gpu/instance.h, gpu/device.h).
   std::vector<std::string> instance_extensions;
   std::vector<std::string> device_extensions;
+  bool ray_tracing = false;  // DeviceOptions::ray_tracing
   // OpenXR's binding: the runtime creates both handles from the create infos built here, and
   // names the physical device once the instance exists (it overrides device_index).
   std::function<VkResult(const VkInstanceCreateInfo&, VkInstance*)> create_instance;
@@ -44,6 +45,7 @@ class Context {
                  .physical = options.pick_physical ? options.pick_physical(instance_.handle())
                                                    : VK_NULL_HANDLE,
                  .extensions = options.device_extensions,
+                 .ray_tracing = options.ray_tracing,
                  .create = options.create_device}) {}
 
   Instance& instance() { return instance_; }

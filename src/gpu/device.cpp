@@ -61,19 +61,6 @@ DeviceFeatures choose_features(const FeatureChain& has, FeatureChain& enable) {
   return f;
 }
 
-bool device_extension_available(VkPhysicalDevice physical, const std::string& name) {
-  std::uint32_t count = 0;
-  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr) != VK_SUCCESS)
-    return false;
-  std::vector<VkExtensionProperties> extensions(count);
-  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data()) !=
-      VK_SUCCESS)
-    return false;
-  for (const auto& e : extensions)
-    if (name == e.extensionName) return true;
-  return false;
-}
-
 std::uint32_t chosen_device(const std::vector<DeviceInfo>& devices, const DeviceOptions& options) {
   if (options.physical == VK_NULL_HANDLE) return select_device(devices, options.index);
   for (std::uint32_t i = 0; i < devices.size(); ++i)
@@ -103,8 +90,24 @@ Device::Device(const Instance& instance, const DeviceOptions& options) : instanc
   queue_info.queueCount = 1;
   queue_info.pQueuePriorities = &priority;
 
+  std::vector<std::string> names = options.extensions;
+  // Ray tracing: the extensions and their features, chained after the core ones.
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR acceleration{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR pipeline{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+  if (options.ray_tracing && info_.ray_tracing) {
+    acceleration.accelerationStructure = VK_TRUE;
+    pipeline.rayTracingPipeline = VK_TRUE;
+    acceleration.pNext = &pipeline;
+    enabled.v13.pNext = &acceleration;
+    enabled.v12.bufferDeviceAddress = VK_TRUE;
+    for (const std::string& name : ray_tracing_extensions()) names.push_back(name);
+    features_.ray_tracing = true;
+  }
+
   std::vector<const char*> extensions;
-  for (const std::string& name : options.extensions) {
+  for (const std::string& name : names) {
     if (!device_extension_available(info_.handle, name))
       throw GpuError(info_.name + " has no " + name + " extension");
     extensions.push_back(name.c_str());

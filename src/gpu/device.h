@@ -23,6 +23,10 @@ struct DeviceOptions {
   // Device extensions beyond the renderer's (VK_KHR_swapchain for a window). A missing one
   // throws GpuError naming it and the device.
   std::vector<std::string> extensions;
+  // Switch Vulkan ray tracing on where the device has it (DeviceInfo::ray_tracing): its
+  // extensions, rayTracingPipeline, accelerationStructure and bufferDeviceAddress. Off by
+  // default so that the rasterizer's devices stay as they were; the GPU probe tracer asks.
+  bool ray_tracing = false;
   // Set: called instead of vkCreateDevice with the create info built here (OpenXR's
   // xrCreateVulkanDeviceKHR). The device is still destroyed here.
   std::function<VkResult(VkPhysicalDevice, const VkDeviceCreateInfo&, VkDevice*)> create;
@@ -54,6 +58,9 @@ struct DeviceFeatures {
   // Required by every 1.3 device, and needed: glslang's vulkan1.3 target writes the work-group
   // size as LocalSizeId, which is only valid with maintenance4 on.
   bool maintenance4 = false;
+  // Ray-tracing pipelines, acceleration structures and buffer device addresses
+  // (DeviceOptions::ray_tracing on a device that has them).
+  bool ray_tracing = false;
 };
 
 class Device {

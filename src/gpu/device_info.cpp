@@ -54,6 +54,25 @@ DeviceInfo describe(std::uint32_t index, VkPhysicalDevice handle) {
   info.color_sample_counts = info.limits.framebufferColorSampleCounts;
   info.depth_sample_counts = info.limits.framebufferDepthSampleCounts;
 
+  if (basic.apiVersion >= VK_API_VERSION_1_2) {
+    bool extensions = true;
+    for (const std::string& name : ray_tracing_extensions())
+      extensions = extensions && device_extension_available(handle, name);
+    if (extensions) {
+      VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+      VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+      VkPhysicalDeviceAccelerationStructureFeaturesKHR as{
+          VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+      VkPhysicalDeviceRayTracingPipelineFeaturesKHR rt{
+          VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+      features.pNext = &v12;
+      v12.pNext = &as;
+      as.pNext = &rt;
+      vkGetPhysicalDeviceFeatures2(handle, &features);
+      info.ray_tracing = v12.bufferDeviceAddress && as.accelerationStructure && rt.rayTracingPipeline;
+    }
+  }
+
   std::uint32_t family_count = 0;
   vkGetPhysicalDeviceQueueFamilyProperties(handle, &family_count, nullptr);
   std::vector<VkQueueFamilyProperties> families(family_count);
@@ -79,6 +98,26 @@ std::string device_list(const std::vector<DeviceInfo>& devices) {
 }
 
 }  // namespace
+
+bool device_extension_available(VkPhysicalDevice physical, const std::string& name) {
+  std::uint32_t count = 0;
+  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, nullptr) != VK_SUCCESS)
+    return false;
+  std::vector<VkExtensionProperties> extensions(count);
+  if (vkEnumerateDeviceExtensionProperties(physical, nullptr, &count, extensions.data()) !=
+      VK_SUCCESS)
+    return false;
+  for (const auto& e : extensions)
+    if (name == e.extensionName) return true;
+  return false;
+}
+
+const std::vector<std::string>& ray_tracing_extensions() {
+  static const std::vector<std::string> names = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+                                                 VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME,
+                                                 VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+  return names;
+}
 
 std::string DeviceInfo::unusable_reason() const {
   if (api_version < kRequiredApiVersion)

@@ -37,6 +37,10 @@ struct DeviceInfo {
   VkSampleCountFlags color_sample_counts = 0;  // framebuffer colour MSAA counts
   VkSampleCountFlags depth_sample_counts = 0;  // framebuffer depth MSAA counts
   VkPhysicalDeviceLimits limits{};
+  // Vulkan ray-tracing pipelines are there: VK_KHR_ray_tracing_pipeline,
+  // VK_KHR_acceleration_structure and VK_KHR_deferred_host_operations with their features and
+  // bufferDeviceAddress (Mesa 25 lavapipe has them; Mesa 22 does not). What trace_vk/ needs.
+  bool ray_tracing = false;
 
   // Vulkan 1.3 and a graphics+compute queue: what ddish needs to run on a device.
   bool usable() const { return unusable_reason().empty(); }
@@ -45,6 +49,12 @@ struct DeviceInfo {
   // MSAA counts that both colour and depth attachments support (what the rasterizer can use).
   VkSampleCountFlags msaa_sample_counts() const { return color_sample_counts & depth_sample_counts; }
 };
+
+// Whether the physical device offers the device extension `name`.
+bool device_extension_available(VkPhysicalDevice physical, const std::string& name);
+
+// The device extensions ray tracing needs (DeviceInfo::ray_tracing).
+const std::vector<std::string>& ray_tracing_extensions();
 
 // Every physical device the loader reports, in its order.
 std::vector<DeviceInfo> enumerate_devices(const Instance& instance);

@@ -80,7 +80,7 @@ void DeviceMemory::release() noexcept {
 }
 
 DeviceMemory::DeviceMemory(const Device& device, const VkMemoryRequirements& requirements,
-                           MemoryUse use) {
+                           MemoryUse use, VkMemoryAllocateFlags allocate_flags) {
   const auto& props = device.memory_properties();
   type_index_ = find_memory_type(props, requirements.memoryTypeBits, required_properties(use),
                                  preferred_properties(use));
@@ -90,6 +90,9 @@ DeviceMemory::DeviceMemory(const Device& device, const VkMemoryRequirements& req
   VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   info.allocationSize = requirements.size;
   info.memoryTypeIndex = type_index_;
+  VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+  flags.flags = allocate_flags;
+  if (allocate_flags != 0) info.pNext = &flags;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   check(vkAllocateMemory(device.handle(), &info, nullptr, &memory),
         "vkAllocateMemory of " + std::to_string(requirements.size) + " bytes");

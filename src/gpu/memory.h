@@ -50,7 +50,10 @@ class DeviceMemory {
   DeviceMemory() = default;
   // Allocates memory meeting `requirements` for `use`, mapped when host visible. Coherence is
   // required of host-visible types, so writes through mapped() need no flush.
-  DeviceMemory(const Device& device, const VkMemoryRequirements& requirements, MemoryUse use);
+  // allocate_flags: VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT for buffers read by address
+  // (acceleration-structure inputs and storage).
+  DeviceMemory(const Device& device, const VkMemoryRequirements& requirements, MemoryUse use,
+               VkMemoryAllocateFlags allocate_flags = 0);
   DeviceMemory(DeviceMemory&& other) noexcept { *this = std::move(other); }
   DeviceMemory& operator=(DeviceMemory&& other) noexcept;
   ~DeviceMemory() { release(); }

@@ -3,7 +3,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -71,25 +70,9 @@ std::uint32_t ProbeTracer::trace_probe(const ProbeVolume& volume, std::uint32_t 
   return backfaces;
 }
 
-UpdateStats ProbeTracer::update(ProbeVolume& volume) const {
-  std::vector<std::uint32_t> all(volume.probe_count());
-  std::iota(all.begin(), all.end(), 0u);
-  return update(volume, all);
-}
-
 UpdateStats ProbeTracer::update(ProbeVolume& volume, std::span<const std::uint32_t> probes) const {
-  // Only active probes are traced, each once (two tasks on one probe would race): inactive and
-  // repeated ones are left out before any work is split.
-  std::vector<std::uint32_t> work;
-  work.reserve(probes.size());
-  std::vector<bool> listed(volume.probe_count(), false);
-  for (std::uint32_t p : probes) {
-    if (p >= volume.probe_count())
-      throw std::out_of_range("probe index " + std::to_string(p) + " outside a volume of " +
-                              std::to_string(volume.probe_count()) + " probes");
-    if (volume.state(p).active() && !listed[p]) work.push_back(p);
-    listed[p] = true;
-  }
+  // Inactive and repeated probes are left out before any work is split.
+  const std::vector<std::uint32_t> work = probes_to_update(volume, probes);
 
   volume.begin_update();
   UpdateStats stats;

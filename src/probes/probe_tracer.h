@@ -11,6 +11,7 @@
 
 #include "probes/accumulation.h"
 #include "probes/classification.h"
+#include "probes/probe_updater.h"
 #include "probes/probe_volume.h"
 #include "sh/sh_rgb.h"
 #include "trace/tracer.h"  // Ray, PathSample
@@ -53,18 +54,19 @@ struct UpdateStats {
   double mrays_per_second() const { return seconds > 0.0 ? double(rays) / seconds * 1e-6 : 0.0; }
 };
 
-class ProbeTracer {
+// The probe update on the CPU: paths from a RadianceSource, parallel over probes.
+class ProbeTracer final : public ProbeUpdater {
  public:
   ProbeTracer(const RadianceSource& source, const UpdateOptions& options);
 
-  const UpdateOptions& options() const { return options_; }
-  void set_options(const UpdateOptions& options);
+  const UpdateOptions& options() const override { return options_; }
+  void set_options(const UpdateOptions& options) override;
 
   // One update of every active probe of the volume.
-  UpdateStats update(ProbeVolume& volume) const;
+  UpdateStats update(ProbeVolume& volume) const { return update_all(volume); }
   // One update of the listed probes (the scheduler's choice); inactive ones are skipped.
   // Every probe still ages by one; the updated ones restart at age 0.
-  UpdateStats update(ProbeVolume& volume, std::span<const std::uint32_t> probes) const;
+  UpdateStats update(ProbeVolume& volume, std::span<const std::uint32_t> probes) const override;
 
   // The SH projection of one probe's rays for the volume's update number `frame`, without
   // touching the volume (the estimate has the volume's order). Returns the number of back-face

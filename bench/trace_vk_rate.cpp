@@ -1,0 +1,139 @@
+// The GPU probe tracer's ray rate beside the Embree one's, on the same probes: the scene's grid
+// (as trace_floor places it), S paths per probe, the same bounces; each tracer's first update
+// classifies the probes (and builds the GPU pipeline's state), updates 2..K are timed.
+//
+//   trace_vk_rate SCENE [--grid X,Y,Z] [--samples N] [--bounces N] [--updates K] [--device N]
+//                       [--tracers both|vulkan|embree]
+//
+// Prints one CSV row (header first) with each tracer's median update time, rays per update and
+// Mrays/s, and the Vulkan device. The two tracers cast different rays (other random numbers), so
+// rays per update differ by the Monte Carlo noise of path lengths. Exit 2 when the device has
+// no ray-tracing pipelines (with --tracers embree it is not opened).
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gpu/context.h"
+#include "probes/probe_grid.h"
+#include "probes/probe_tracer.h"
+#include "probes/probe_volume.h"
+#include "probes/tracer_source.h"
+#include "scene/gltf_loader.h"
+#include "scene/scene.h"
+#include "trace/tracer.h"
+#include "trace_vk/vk_probe_tracer.h"
+
+namespace {
+
+using namespace ddish;
+
+struct Rate {
+  double ms = 0.0;      // median update
+  double rays = 0.0;    // median rays per update
+  double mrays_s = 0.0; // rays / time over the timed updates
+  std::uint32_t probes = 0;
+};
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+probes::ProbeGrid place(const scene::Scene& s, const std::string& grid) {
+  const scene::Aabb bounds = s.sidecar.probe_bounds ? *s.sidecar.probe_bounds : s.bounds();
+  if (!grid.empty()) {
+    glm::ivec3 c{0};
+    if (std::sscanf(grid.c_str(), "%d,%d,%d", &c.x, &c.y, &c.z) != 3 || c.x < 1 || c.y < 1 || c.z < 1)
+      throw std::invalid_argument("--grid needs three positive counts X,Y,Z, got '" + grid + "'");
+    return probes::ProbeGrid(bounds, c);
+  }
+  if (s.sidecar.probe_counts) return probes::ProbeGrid(bounds, *s.sidecar.probe_counts);
+  return probes::ProbeGrid::fit_auto(bounds);
+}
+
+Rate measure(const probes::ProbeUpdater& updater, const probes::ProbeGrid& grid, int updates) {
+  probes::ProbeVolume volume(grid, probes::kDefaultShOrder);
+  updater.update_all(volume);  // classification, first-use costs
+  std::vector<double> ms, rays;
+  double total_s = 0.0, total_rays = 0.0;
+  for (int k = 1; k < updates; ++k) {
+    const probes::UpdateStats u = updater.update_all(volume);
+    ms.push_back(u.seconds * 1e3);
+    rays.push_back(double(u.rays));
+    total_s += u.seconds;
+    total_rays += double(u.rays);
+  }
+  return {median(ms), median(rays), total_s > 0.0 ? total_rays / total_s * 1e-6 : 0.0, volume.active_count()};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  std::string path, grid, tracers = "both";
+  int samples = 256, bounces = 15, updates = 4;  // bounces: ddish render's default
+  std::optional<std::uint32_t> device;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--grid") grid = next();
+    else if (a == "--samples") samples = std::stoi(next());
+    else if (a == "--bounces") bounces = std::stoi(next());
+    else if (a == "--updates") updates = std::stoi(next());
+    else if (a == "--device") device = static_cast<std::uint32_t>(std::stoul(next()));
+    else if (a == "--tracers") tracers = next();
+    else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
+    else path = a;
+  }
+  if (path.empty())
+    throw std::invalid_argument("usage: trace_vk_rate SCENE [--grid X,Y,Z] [--samples N] [--bounces N] "
+                                "[--updates K] [--device N] [--tracers both|vulkan|embree]");
+  if (samples < 1 || bounces < 0 || updates < 2) throw std::invalid_argument("need --samples >= 1, --bounces >= 0, --updates >= 2");
+  if (tracers != "both" && tracers != "vulkan" && tracers != "embree")
+    throw std::invalid_argument("--tracers is both, vulkan or embree, got '" + tracers + "'");
+
+  const scene::Scene s = scene::load_scene(path);
+  const probes::ProbeGrid grid_used = place(s, grid);
+  trace::PathOptions path_options;
+  path_options.max_bounces = bounces;
+  probes::UpdateOptions options;
+  options.samples = static_cast<std::uint32_t>(samples);
+  options.seed = 1;
+
+  Rate embree, vulkan;
+  std::string device_name = "-";
+  if (tracers != "vulkan") {
+    const trace::Tracer tracer(s, path_options);
+    const probes::TracerSource source(tracer);
+    embree = measure(probes::ProbeTracer(source, options), grid_used, updates);
+  }
+  if (tracers != "embree") {
+    gpu::Context gpu(gpu::ContextOptions{.device_index = device, .ray_tracing = true});
+    device_name = gpu.device().info().name;
+    if (!gpu.device().features().ray_tracing) {
+      std::fprintf(stderr, "trace_vk_rate: %s has no Vulkan ray-tracing pipelines\n", device_name.c_str());
+      return 2;
+    }
+    const trace_vk::VkProbeTracer tracer(gpu.device(), s, path_options, options);
+    vulkan = measure(tracer, grid_used, updates);
+  }
+  std::printf("scene,triangles,probes,active,samples,bounces,embree_ms,embree_rays,embree_mrays_s,"
+              "vulkan_ms,vulkan_rays,vulkan_mrays_s,vulkan_device\n");
+  std::printf("%s,%zu,%u,%u,%d,%d,%.3f,%.0f,%.3f,%.3f,%.0f,%.3f,\"%s\"\n", s.path.c_str(), s.triangle_count(),
+              grid_used.probe_count(), std::max(embree.probes, vulkan.probes), samples, bounces, embree.ms,
+              embree.rays, embree.mrays_s, vulkan.ms, vulkan.rays, vulkan.mrays_s, device_name.c_str());
+  return 0;
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "trace_vk_rate: %s\n", e.what());
+  return 2;
+}

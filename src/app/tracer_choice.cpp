@@ -1,0 +1,87 @@
+#include "app/tracer_choice.h"
+
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+#include "gpu/context.h"
+#include "gpu/device_info.h"
+#include "gpu/instance.h"
+#include "scene/scene.h"
+#include "trace_vk/scene_layout.h"
+#include "trace_vk/vk_probe_tracer.h"
+
+namespace ddish::app {
+
+void add_tracer_option(CLI::App& cmd, std::string& choice) {
+  cmd.add_option("--tracer", choice,
+                 "probe tracer: auto (Vulkan ray tracing on a GPU that has it, else Embree), embree (CPU), "
+                 "vulkan (ray-tracing pipelines; on lavapipe too, slowly)")
+      ->check(CLI::IsMember({"auto", "embree", "vulkan"}))
+      ->capture_default_str();
+}
+
+TracerDecision choose_tracer(const std::string& choice, std::optional<std::uint32_t> device,
+                             const scene::Scene& scene) {
+  if (choice == "embree") return {TracerKind::embree, "embree (--tracer embree)"};
+  // Only the device's description is needed: no device is opened here.
+  const gpu::Instance instance;
+  const std::vector<gpu::DeviceInfo> devices = gpu::enumerate_devices(instance);
+  const gpu::DeviceInfo& info = devices[gpu::select_device(devices, device)];
+  const std::string unsupported = trace_vk::unsupported_features(scene);
+  if (choice == "vulkan") {
+    if (!info.ray_tracing)
+      throw std::invalid_argument("--tracer vulkan: " + info.name + " (" + info.driver_info +
+                                  ") has no Vulkan ray-tracing pipelines (VK_KHR_ray_tracing_pipeline, "
+                                  "VK_KHR_acceleration_structure)");
+    if (!unsupported.empty())
+      throw std::invalid_argument("--tracer vulkan: the Vulkan tracer does not support " + unsupported +
+                                  " yet; use --tracer embree");
+    return {TracerKind::vulkan, "vulkan on " + info.name + " (--tracer vulkan)"};
+  }
+  if (!info.ray_tracing) return {TracerKind::embree, "embree (auto: " + info.name + " has no ray-tracing pipelines)"};
+  if (info.type == gpu::DeviceType::cpu)
+    return {TracerKind::embree, "embree (auto: " + info.name + " is a CPU device; Embree is faster there)"};
+  if (!unsupported.empty())
+    return {TracerKind::embree, "embree (auto: the Vulkan tracer does not support " + unsupported + " yet)"};
+  return {TracerKind::vulkan, "vulkan on " + info.name + " (auto)"};
+}
+
+std::string auto_tracer_line(const scene::Scene& scene) {
+  try {
+    return choose_tracer("auto", std::nullopt, scene).why;
+  } catch (const std::exception& e) {
+    return std::string("embree (auto: no usable Vulkan device: ") + e.what() + ")";
+  }
+}
+
+ProbeEngine::ProbeEngine(TracerKind kind, const scene::Scene& scene, const trace::PathOptions& path,
+                         const probes::UpdateOptions& options, std::optional<std::uint32_t> device,
+                         const gpu::Device* shared)
+    : kind_(kind) {
+  if (kind == TracerKind::embree) {
+    tracer_ = std::make_unique<trace::Tracer>(scene, path);
+    source_ = std::make_unique<probes::TracerSource>(*tracer_);
+    cpu_ = std::make_unique<probes::ProbeTracer>(*source_, options);
+  } else {
+    if (!shared) {
+      gpu_ = std::make_unique<gpu::Context>(gpu::ContextOptions{.device_index = device, .ray_tracing = true});
+      shared = &gpu_->device();
+    }
+    vk_ = std::make_unique<trace_vk::VkProbeTracer>(*shared, scene, path, options);
+  }
+}
+
+ProbeEngine::~ProbeEngine() = default;
+
+probes::ProbeUpdater& ProbeEngine::updater() {
+  if (cpu_) return *cpu_;
+  return *vk_;
+}
+
+void ProbeEngine::posed(const scene::Scene& scene, std::span<const int> moved) {
+  if (tracer_) tracer_->update(scene, moved);
+  if (vk_) vk_->scene_posed(scene, moved);
+}
+
+}  // namespace ddish::app
