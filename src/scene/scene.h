@@ -15,6 +15,7 @@
 
 #include "scene/aabb.h"
 #include "scene/animation.h"
+#include "scene/deformation.h"
 #include "scene/environment_map.h"
 
 namespace ddish::scene {
@@ -124,7 +125,13 @@ struct Mesh {
   std::vector<glm::vec4> tangents;  // xyz tangent, w handedness; generated when missing
   std::vector<std::uint32_t> indices;  // 3 per triangle
   int material = -1;                   // index into Scene::materials; -1 = glTF default material
-  Aabb bounds;                         // object space
+  Aabb bounds;                         // object space (of the current pose)
+  // Morph targets and skin influences with the rest pose; empty for a rigid mesh. A deformed
+  // mesh's arrays above are its current pose, written by Scene::pose.
+  Deformation deformation;
+  // Counts the times pose() rewrote the arrays, so the tracer and the rasterizer re-upload a
+  // deformed mesh only when its pose changed.
+  std::uint64_t pose_version = 0;
 
   std::size_t triangle_count() const { return indices.size() / 3; }
   // The UV set a texture slot reads (0 or 1).
@@ -143,9 +150,27 @@ struct Node {
   std::vector<int> meshes;  // Scene::meshes drawn at this node (one per glTF primitive)
   int camera = -1;          // index into Scene::cameras
   int light = -1;           // index into Scene::lights
+  int skin = -1;            // index into Scene::skins: skins this node's meshes
+  // Morph-target weights of this node's mesh: the node's "weights", else the mesh's, else 0;
+  // "weights" animation channels drive them.
+  std::vector<float> weights;
 };
 
-// A mesh placed in the world. Instances of the same mesh share its vertex data.
+// A mesh that pose() deforms (morph targets, or skin influences drawn by a node with a skin).
+// Each is drawn by one node only: the loader gives every further node drawing it its own copy,
+// as the pose depends on the node's weights and skin.
+struct DeformedMesh {
+  int mesh = -1;
+  int node = -1;
+  int skin = -1;  // -1: morph targets only
+  // The weights and joint matrices of the last pose, to skip posing when they did not change.
+  std::vector<float> weights;
+  std::vector<glm::mat4> joints;
+  bool posed = false;
+};
+
+// A mesh placed in the world. Instances of the same mesh share its vertex data (a deformed
+// mesh is shared only by the EXT_mesh_gpu_instancing instances of its one node).
 struct Instance {
   int mesh = -1;
   int node = -1;
@@ -218,6 +243,8 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<Camera> cameras;
   std::vector<Animation> animations;
+  std::vector<Skin> skins;
+  std::vector<DeformedMesh> deformed;
   Sidecar sidecar;
   // An equirectangular environment (--environment) in place of the uniform one; the uniform
   // radiance is then 0 (app/lighting_options.h). Every renderer adds both.
@@ -228,8 +255,10 @@ struct Scene {
   std::vector<std::string> warnings;
 
   // Poses the scene at time t (seconds): evaluates every animation, then recomputes node world
-  // transforms, instance transforms, light and camera placements. Returns the indices of the
-  // instances whose transform changed, so consumers rebuild only what moved.
+  // transforms, instance transforms, light and camera placements, and the vertices of deformed
+  // meshes (skins, morph targets). Returns the indices of the instances whose transform or
+  // vertices changed, so consumers rebuild only what moved (a changed mesh has a new
+  // pose_version).
   std::vector<int> pose(double t);
 
   // Duration of the longest animation (0 when there is none).

@@ -77,6 +77,12 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// Copies the mesh's (current) positions into the geometry's vertex buffer.
+void write_vertices(RTCGeometry geom, const scene::Mesh& mesh) {
+  auto* verts = static_cast<float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0));
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) std::memcpy(verts + 3 * i, &mesh.positions[i], 3 * sizeof(float));
+}
+
 void error_callback(void* user, RTCError code, const char* message) {
   auto* last = static_cast<std::string*>(user);
   *last = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
@@ -91,6 +97,10 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const TextureSet& textures) 
 
   mesh_data_.resize(scene.meshes.size());
   mesh_scenes_.assign(scene.meshes.size(), nullptr);
+  deformed_geoms_.assign(scene.meshes.size(), nullptr);
+  mesh_versions_.assign(scene.meshes.size(), 0);
+  std::vector<bool> deformed(scene.meshes.size(), false);
+  for (const scene::DeformedMesh& d : scene.deformed) deformed[static_cast<std::size_t>(d.mesh)] = true;
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const scene::Mesh& mesh = scene.meshes[m];
     const scene::Material& mat = scene.material_of(mesh);
@@ -98,15 +108,17 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const TextureSet& textures) 
     if (mesh.triangle_count() == 0 || mesh.positions.empty()) continue;
 
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* verts = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-      std::memcpy(verts + 3 * i, &mesh.positions[i], 3 * sizeof(float));
-    }
+    rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                            mesh.positions.size());
+    write_vertices(geom, mesh);
+    mesh_versions_[m] = mesh.pose_version;
     auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
         geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangle_count()));
     std::memcpy(idx, mesh.indices.data(), mesh.triangle_count() * 3 * sizeof(unsigned));
-    rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+    // A deformed mesh (skin, morph targets) gets new vertices whenever its pose changes: its
+    // BVH is refitted then, which keeps the tree's topology and recomputes its boxes (Embree
+    // honours a geometry's quality in a scene of quality LOW).
+    rtcSetGeometryBuildQuality(geom, deformed[m] ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
     if (mat.alpha_mode != scene::AlphaMode::Opaque) {
       rtcSetGeometryUserData(geom, &mesh_data_[m]);
       rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
@@ -115,10 +127,13 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const TextureSet& textures) 
     rtcCommitGeometry(geom);
 
     RTCScene s = rtcNewScene(device_);
-    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneFlags(s, deformed[m] ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(s, deformed[m] ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
     rtcAttachGeometryByID(s, geom, 0);
-    rtcReleaseGeometry(geom);
+    if (deformed[m])
+      deformed_geoms_[m] = geom;  // kept to rewrite its vertices (released with the scene)
+    else
+      rtcReleaseGeometry(geom);
     rtcCommitScene(s);
     mesh_scenes_[m] = s;
   }
@@ -161,6 +176,10 @@ void EmbreeScene::release() {
   }
   if (top_ != nullptr) rtcReleaseScene(top_);
   top_ = nullptr;
+  for (RTCGeometry& g : deformed_geoms_) {
+    if (g != nullptr) rtcReleaseGeometry(g);
+    g = nullptr;
+  }
   for (RTCScene& s : mesh_scenes_) {
     if (s != nullptr) rtcReleaseScene(s);
     s = nullptr;
@@ -177,6 +196,7 @@ void EmbreeScene::update(const scene::Scene& scene, std::span<const int> moved) 
       continue;
     }
     const auto k = static_cast<std::size_t>(i);
+    reshape(scene, scene.instances[k].mesh);
     transforms_[k] = InstanceTransform::from(scene.instances[k].transform);
     if (instance_geoms_[k] == nullptr) continue;
     rtcSetGeometryTransform(instance_geoms_[k], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
@@ -185,6 +205,19 @@ void EmbreeScene::update(const scene::Scene& scene, std::span<const int> moved) 
     changed = true;
   }
   if (changed) rtcCommitScene(top_);
+}
+
+void EmbreeScene::reshape(const scene::Scene& scene, int mesh) {
+  if (mesh < 0 || static_cast<std::size_t>(mesh) >= deformed_geoms_.size()) return;
+  const auto m = static_cast<std::size_t>(mesh);
+  RTCGeometry geom = deformed_geoms_[m];
+  const scene::Mesh& posed = scene.meshes[m];
+  if (geom == nullptr || mesh_versions_[m] == posed.pose_version) return;
+  write_vertices(geom, posed);
+  rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+  rtcCommitGeometry(geom);
+  rtcCommitScene(mesh_scenes_[m]);
+  mesh_versions_[m] = posed.pose_version;
 }
 
 bool EmbreeScene::intersect(const Ray& ray, const RayQuery& query, Hit& hit) const {

@@ -1,7 +1,9 @@
 // The Embree 3 view of a scene: one triangle geometry per scene::Mesh, each in its own RTCScene,
 // placed in a top-level scene by one RTC_GEOMETRY_TYPE_INSTANCE per scene::Instance (instances
 // share geometry; the instance geometry's ID is the scene's instance index). Moving instances
-// only re-sets their transforms and re-commits the top level.
+// only re-sets their transforms and re-commits the top level. A deformed mesh (skin, morph
+// targets; scene::DeformedMesh) is built for refitting: when its pose_version changes, its
+// vertex buffer is rewritten from the posed positions and its BVH refitted.
 //
 // Alpha: AlphaMode::Mask materials get intersection and occlusion filter functions that reject
 // hits whose base-colour alpha (factor × texture at the hit's UV) is below the cutoff.
@@ -79,8 +81,8 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  // Re-reads the transforms of `moved` instances and re-commits the top level. Not concurrent
-  // with intersect/occluded.
+  // Re-reads the transforms of `moved` instances (and the vertices of their meshes where the
+  // pose changed them) and re-commits the top level. Not concurrent with intersect/occluded.
   void update(const scene::Scene& scene, std::span<const int> moved);
 
   bool intersect(const Ray& ray, const RayQuery& query, Hit& hit) const;
@@ -102,6 +104,8 @@ class EmbreeScene {
 
  private:
   void release();
+  // Rewrites and refits a deformed mesh whose pose changed since it was last written.
+  void reshape(const scene::Scene& scene, int mesh);
 
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
@@ -109,6 +113,8 @@ class EmbreeScene {
   std::vector<RTCGeometry> instance_geoms_;    // per scene::Instance; null when not placed
   std::vector<InstanceTransform> transforms_;  // per scene::Instance
   std::vector<MeshGeometry> mesh_data_;        // per scene::Mesh (stable addresses: sized once)
+  std::vector<RTCGeometry> deformed_geoms_;    // per scene::Mesh; null unless deformed
+  std::vector<std::uint64_t> mesh_versions_;   // per scene::Mesh: the pose_version written
   std::string error_;                          // the last error Embree reported
 };
 
