@@ -73,6 +73,8 @@ CASES = [
     ("info {bad}/missing_mesh.gltf", "a node naming a mesh that does not exist"),
     ("info {bad}/missing_buffer_file.gltf", "a buffer file that is not there"),
     ("info {bad}/scale_not_finite.gltf", "a node scale beyond float range"),
+    ("info {bad}/skin_joint_out_of_range.gltf", "a skinned vertex using a joint its skin lacks"),
+    ("info {bad}/skin_no_joints.gltf", "a skin without joints"),
     ("render {bad}/huge_textures.gltf", "textures that decode to more than the memory free",
      "more than the"),
     ("info {bad}/truncated.glb", "a GLB cut off in its header"),
