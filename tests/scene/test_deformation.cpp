@@ -113,6 +113,8 @@ namespace {
 struct SkinFile {
   std::vector<std::uint8_t> joints = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
   std::vector<float> weights = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  std::vector<std::uint8_t> joints1;  // JOINTS_1 / WEIGHTS_1 when not empty
+  std::vector<float> weights1;
   int joint_count = 1;
   bool morph = false;
   std::string write(const test::TempDir& dir) const {
@@ -124,6 +126,13 @@ struct SkinFile {
         {{"bufferView", view}, {"componentType", 5121}, {"count", 3}, {"type", "VEC4"}});
     prim["attributes"]["JOINTS_0"] = int(b.doc["accessors"].size()) - 1;
     prim["attributes"]["WEIGHTS_0"] = b.add_floats(weights, "VEC4", 3);
+    if (!joints1.empty()) {
+      const int view1 = b.add_view(joints1.data(), joints1.size());
+      b.doc["accessors"].push_back(
+          {{"bufferView", view1}, {"componentType", 5121}, {"count", 3}, {"type", "VEC4"}});
+      prim["attributes"]["JOINTS_1"] = int(b.doc["accessors"].size()) - 1;
+      prim["attributes"]["WEIGHTS_1"] = b.add_floats(weights1, "VEC4", 3);
+    }
     if (morph) prim["targets"] = {{{"POSITION", b.add_floats({0, 1, 0, 0, 1, 0, 0, 1, 0}, "VEC3", 3)}}};
     nlohmann::json mesh = {{"primitives", {prim}}};
     if (morph) mesh["weights"] = {0.25};
@@ -159,6 +168,25 @@ TEST(Skinning, WeightsAreNormalisedAndZeroWeightsStay) {
   EXPECT_FLOAT_EQ(world(1).x, 1.0f);  // weights all 0: where the file put it
   EXPECT_FLOAT_EQ(world(2).x, 2.0f);
   EXPECT_FLOAT_EQ(world(2).y, 2.0f);
+}
+
+// A second set of influences (JOINTS_1 / WEIGHTS_1) counts like the first: vertex 0 has
+// weight 0.5 on the joint at x = 2 (set 0) and 0.5 on the one at x = 4 (set 1), so it lands
+// at x = 3.
+TEST(Skinning, EightInfluencesPerVertex) {
+  test::TempDir dir("skin_eight");
+  SkinFile f;
+  f.joint_count = 2;
+  f.weights = {0.5f, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0};
+  f.joints1 = {1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  f.weights1 = {0.5f, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  scene::Scene s = scene::load_scene(f.write(dir));
+  ASSERT_EQ(s.deformed.size(), 1u);
+  const scene::Mesh& m = s.meshes[std::size_t(s.deformed[0].mesh)];
+  EXPECT_EQ(m.deformation.influences.sets, 2);
+  const glm::vec3 p = glm::vec3(s.instances[0].transform * glm::vec4(m.positions[0], 1.0f));
+  EXPECT_FLOAT_EQ(p.x, 3.0f);
+  EXPECT_FLOAT_EQ(glm::vec3(s.instances[0].transform * glm::vec4(m.positions[1], 1.0f)).x, 3.0f);
 }
 
 TEST(Skinning, BadSkinsGetOneClearError) {
