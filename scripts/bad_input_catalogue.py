@@ -75,6 +75,7 @@ CASES = [
     ("info {bad}/scale_not_finite.gltf", "a node scale beyond float range"),
     ("info {bad}/skin_joint_out_of_range.gltf", "a skinned vertex using a joint its skin lacks"),
     ("info {bad}/skin_no_joints.gltf", "a skin without joints"),
+    ("render {bad}/points_only.gltf", "a scene of points only (nothing ddish draws)"),
     ("render {bad}/huge_textures.gltf", "textures that decode to more than the memory free",
      "more than the"),
     ("info {bad}/truncated.glb", "a GLB cut off in its header"),
