@@ -110,8 +110,9 @@ def texture_transform(out_dir):
     red, green / blue, white) with NEAREST filters, each through another texture coordinate:
       0: TEXCOORD_1 (TEXCOORD_0 is (0.75, 0.75) everywhere, the white texel);
       1: KHR_texture_transform offset (0.5, 0): u' = u + 0.5 (columns swap, REPEAT);
-      2: rotation pi/2 with offset (1, 0): (u', v') = (1 - v, u) (the extension's matrix
-         [[cos, -sin], [sin, cos]]);
+      2: rotation pi/2 with offset (0, 1): (u', v') = (v, 1 - u) (the matrix
+         [[cos, sin], [-sin, cos]]: counter-clockwise with v down, as the extension's text and
+         Khronos's TextureTransformTest have it);
       3: scale (2, 2) with the extension's texCoord 1 overriding the texture info's 0.
     KHR_texture_transform is required. The camera 2 m in front sees the 4 x 1 m row in a 4:1
     image. No light, no sidecar."""
@@ -121,7 +122,7 @@ def texture_transform(out_dir):
     ext = "KHR_texture_transform"
     infos = [{"index": tex, "texCoord": 1},
              {"index": tex, "extensions": {ext: {"offset": [0.5, 0.0]}}},
-             {"index": tex, "extensions": {ext: {"rotation": math.pi / 2, "offset": [1.0, 0.0]}}},
+             {"index": tex, "extensions": {ext: {"rotation": math.pi / 2, "offset": [0.0, 1.0]}}},
              {"index": tex, "texCoord": 0, "extensions": {ext: {"scale": [2.0, 2.0], "texCoord": 1}}}]
     parts = []
     for k, info in enumerate(infos):

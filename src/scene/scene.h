@@ -39,15 +39,19 @@ enum class Filter { Nearest, Linear };
 enum class MipFilter { None, Nearest, Linear };
 
 // KHR_texture_transform as the affine map it defines on texture coordinates:
-// uv' = offset + R(rotation) * (scale * uv), with R = [[cos, -sin], [sin, cos]] (the extension's
-// GLSL, mat3(cos, sin, 0, -sin, cos, 0, 0, 0, 1), is column-major). Identity when absent.
+// uv' = offset + R(rotation) * (scale * uv), with R = [[cos, sin], [-sin, cos]]: the UVs turn
+// counter-clockwise as seen in glTF's UV space, where v points down, as the extension's text
+// says. Its GLSL listing, read as column-major, gives the transpose (counter-clockwise with v
+// up); Khronos's TextureTransformTest model, Blender, Babylon.js and three.js follow the text
+// (glTF issue #1563), and with the listing's matrix that model's arrow points at its red
+// "opposite direction" marker. Identity when absent.
 struct TextureTransform {
   glm::vec2 offset{0.0f};
   float rotation = 0.0f;  // radians
   glm::vec2 scale{1.0f};
   // Rows of the 2 x 3 matrix: u' = dot(row0, (u, v, 1)), v' = dot(row1, (u, v, 1)).
-  glm::vec3 row0() const { return {std::cos(rotation) * scale.x, -std::sin(rotation) * scale.y, offset.x}; }
-  glm::vec3 row1() const { return {std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y}; }
+  glm::vec3 row0() const { return {std::cos(rotation) * scale.x, std::sin(rotation) * scale.y, offset.x}; }
+  glm::vec3 row1() const { return {-std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y}; }
   glm::vec2 apply(glm::vec2 uv) const {
     const glm::vec3 h(uv, 1.0f);
     return {glm::dot(row0(), h), glm::dot(row1(), h)};
