@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/host_memory.h"
 #include "scene/gltf_internal.h"
 #include "scene/tangents.h"
 
@@ -57,11 +58,25 @@ std::vector<glm::vec4> read_colors(const Context& ctx, int accessor, std::size_t
   return out;
 }
 
+bool morphed_attribute(const std::string& key) {
+  return key == "POSITION" || key == "NORMAL" || key == "TANGENT";
+}
+
 // Morph targets: the deltas of POSITION, NORMAL and TANGENT, one per vertex, checked like the
 // attributes they move. Other target attributes (texture coordinates, colours) are left out;
-// load_meshes says so.
+// load_meshes says so. Targets may share one accessor, so a small file can ask for targets ×
+// vertices deltas: that product is checked against the memory available before any is read.
 std::vector<MorphTarget> read_targets(const Context& ctx, const tinygltf::Primitive& prim,
                                       std::size_t n, const std::string& what) {
+  std::uint64_t attributes = 0;
+  for (const auto& target : prim.targets)
+    for (const auto& entry : target) attributes += morphed_attribute(entry.first);
+  const std::uint64_t bytes = attributes * std::uint64_t(n) * sizeof(glm::vec3);
+  const std::uint64_t available = io::host_memory_available();
+  if (bytes > available)
+    ctx.fail(what + ": its " + std::to_string(prim.targets.size()) + " morph targets of " +
+             std::to_string(n) + " vertices need " + io::format_bytes(bytes) + ", more than the " +
+             io::format_bytes(available) + " of memory available");
   std::vector<MorphTarget> targets;
   for (std::size_t k = 0; k < prim.targets.size(); ++k) {
     const std::string tw = what + " morph target " + std::to_string(k);
@@ -236,7 +251,7 @@ std::vector<std::vector<int>> load_meshes(const Context& ctx, Scene& scene) {
       }
       for (std::size_t k = 0; k < prim.targets.size(); ++k)
         for (const auto& [key, accessor] : prim.targets[k])
-          if (key != "POSITION" && key != "NORMAL" && key != "TANGENT")
+          if (!morphed_attribute(key))
             scene.warnings.push_back("mesh '" + name + "' morph target " + std::to_string(k) +
                                      ": " + key + " is not morphed");
       meshes_of[i].push_back(int(scene.meshes.size()));

@@ -210,3 +210,22 @@ TEST(Skinning, BadSkinsGetOneClearError) {
   EXPECT_NE(test::load_message(negative.write(dir)).find("vertex 1 has a negative weight"), std::string::npos)
       << test::load_message(negative.write(dir));
 }
+
+// Morph targets may all name one accessor: 100000 targets of 2^20 vertices ask for 1172 GiB of
+// deltas from a file of 3.8 MB. The load stops with one line before reading any.
+TEST(Morph, TargetsBeyondMemoryAreRefusedBeforeTheyAreRead) {
+  test::TempDir dir("morph_memory");
+  test::GltfBuilder b;
+  b.doc["accessors"].push_back({{"componentType", 5126}, {"count", 1 << 20}, {"type", "VEC3"}});
+  nlohmann::json prim;
+  prim["attributes"]["POSITION"] = 0;
+  prim["targets"] = nlohmann::json::array();
+  for (int k = 0; k < 100000; ++k) prim["targets"].push_back({{"POSITION", 0}});
+  b.doc["meshes"].push_back({{"primitives", {prim}}});
+  b.add_node({{"mesh", 0}});
+  const std::string message =
+      test::load_message(b.write(dir.path.string(), "m.gltf", test::BufferMode::External));
+  EXPECT_NE(message.find("its 100000 morph targets of 1048576 vertices need 1171.9 GiB, more than the"),
+            std::string::npos)
+      << message;
+}
