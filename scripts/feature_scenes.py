@@ -110,8 +110,9 @@ def texture_transform(out_dir):
     red, green / blue, white) with NEAREST filters, each through another texture coordinate:
       0: TEXCOORD_1 (TEXCOORD_0 is (0.75, 0.75) everywhere, the white texel);
       1: KHR_texture_transform offset (0.5, 0): u' = u + 0.5 (columns swap, REPEAT);
-      2: rotation pi/2 with offset (1, 0): (u', v') = (1 - v, u) (the extension's matrix
-         [[cos, -sin], [sin, cos]]);
+      2: rotation pi/2 with offset (0, 1): (u', v') = (v, 1 - u) (the matrix
+         [[cos, sin], [-sin, cos]]: counter-clockwise with v down, as the extension's text and
+         Khronos's TextureTransformTest have it);
       3: scale (2, 2) with the extension's texCoord 1 overriding the texture info's 0.
     KHR_texture_transform is required. The camera 2 m in front sees the 4 x 1 m row in a 4:1
     image. No light, no sidecar."""
@@ -121,7 +122,7 @@ def texture_transform(out_dir):
     ext = "KHR_texture_transform"
     infos = [{"index": tex, "texCoord": 1},
              {"index": tex, "extensions": {ext: {"offset": [0.5, 0.0]}}},
-             {"index": tex, "extensions": {ext: {"rotation": math.pi / 2, "offset": [1.0, 0.0]}}},
+             {"index": tex, "extensions": {ext: {"rotation": math.pi / 2, "offset": [0.0, 1.0]}}},
              {"index": tex, "texCoord": 0, "extensions": {ext: {"scale": [2.0, 2.0], "texCoord": 1}}}]
     parts = []
     for k, info in enumerate(infos):
@@ -344,5 +345,104 @@ def draco_box(out_dir):
     g.write(out_dir, None)
 
 
+def raw_accessor(g, values, kind, fmt, component_type, normalized=False):
+    """A vertex accessor of integers (struct format `fmt` per component), normalised or not."""
+    flat = [x for v in values for x in v]
+    data = struct.pack("<%d%s" % (len(flat), fmt), *flat)
+    acc = {"bufferView": g._view(data, 34962), "componentType": component_type,
+           "count": len(values), "type": kind}
+    if normalized:
+        acc["normalized"] = True
+    g.doc["accessors"].append(acc)
+    return len(g.doc["accessors"]) - 1
+
+
+def animate(g, name, node, path, times, values, kind):
+    """An animation of one channel: `values` (one list per key, or scalars for weights)."""
+    t = g._times(times)
+    v = g._accessor(values, kind)
+    g.doc.setdefault("animations", []).append({
+        "name": name,
+        "samplers": [{"input": t, "output": v, "interpolation": "LINEAR"}],
+        "channels": [{"sampler": 0, "target": {"node": node, "path": path}}]})
+
+
+# skinned_bar: a 0.2 x 2 x 0.2 m grey bar standing on the origin (x, z in [-0.1, 0.1], y in
+# [0, 2]) in two rigid halves, the lower skinned to joint Root (at the origin), the upper to
+# joint Elbow (at y = 1, a child of Root). Elbow turns about +Z from 0 to 90 degrees over
+# 1 s, so at t >= 1 the upper half points along -x: the posed bar's bounds are x in [-1, 0.1],
+# y in [0, 1.1], z in [-0.1, 0.1]. The mesh's own node stands at x = 3: glTF ignores a skinned
+# mesh's node transform, so it must not move the bar.
+SKINNED_BAR_BENT = ((-1.0, 0.0, -0.1), (0.1, 1.1, 0.1))
+
+
+def skinned_bar(out_dir):
+    """A camera 6 m in front of the bent bar's middle sees it in a 4:3 view 3.2 m wide at the
+    bar (22.6 degree field); no light: the default sky lights it, as sky_coverage.h expects."""
+    g = Gltf("skinned_bar")
+    grey = g.material("Grey", [0.5, 0.5, 0.5, 1.0])
+    lower, upper = Part(grey), Part(grey)
+    lower.box((-0.1, 0.0, -0.1), (0.1, 1.0, 0.1))
+    upper.box((-0.1, 1.0, -0.1), (0.1, 2.0, 0.1))
+    bar = Part(grey)
+    for part in (lower, upper):
+        base = len(bar.positions)
+        bar.positions += part.positions
+        bar.normals += part.normals
+        bar.uvs += part.uvs
+        bar.indices += [base + i for i in part.indices]
+    mesh = g.mesh("Bar", [bar])
+    attrs = prim(g, mesh, 0)["attributes"]
+    joints = [[0, 0, 0, 0]] * len(lower.positions) + [[1, 0, 0, 0]] * len(upper.positions)
+    attrs["JOINTS_0"] = raw_accessor(g, joints, "VEC4", "B", 5121)
+    attrs["WEIGHTS_0"] = g._accessor([[1.0, 0.0, 0.0, 0.0]] * len(bar.positions), "VEC4")
+    elbow = g.node({"name": "Elbow", "translation": [0.0, 1.0, 0.0]}, root=False)
+    root = g.node({"name": "Root", "children": [elbow]})
+    # Inverse bind matrices (column-major): Root's is the identity, Elbow's moves y = 1 to 0.
+    ibm = [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+           1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1]
+    data = struct.pack("<32f", *ibm)
+    while len(g.bin) % 4:
+        g.bin.append(0)
+    g.doc["bufferViews"].append({"buffer": 0, "byteOffset": len(g.bin), "byteLength": len(data)})
+    g.bin += data
+    g.doc["accessors"].append({"bufferView": len(g.doc["bufferViews"]) - 1,
+                               "componentType": 5126, "count": 2, "type": "MAT4"})
+    g.doc["skins"] = [{"name": "BarSkin", "joints": [root, elbow],
+                       "inverseBindMatrices": len(g.doc["accessors"]) - 1}]
+    g.node({"name": "Bar", "mesh": mesh, "skin": 0, "translation": [3.0, 0.0, 0.0]})
+    s = math.sqrt(0.5)
+    animate(g, "Bend", elbow, "rotation", [0.0, 1.0], [[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, s, s]], "VEC4")
+    g.camera("Camera", [-0.45, 1.0, 6.0], [-0.45, 1.0, 0.0], 2.0 * math.atan(0.2))
+    g.write(out_dir, None)
+
+
+# morph_panels: two unlit 1 x 1 m panels of MORPH_COLOR facing +Z, one mesh with one morph
+# target that lifts the top edge by 1 m (POSITION delta) and tips the normal towards +Y (NORMAL
+# delta (0, 2, 0)). The left panel (x in [-0.5, 0.5]) keeps the mesh's default weight 0.5: its
+# top edge is at y = 1.5. The right one (x in [1, 2]) has a "weights" channel from 0 at t = 0
+# to 1 at t = 2 s (LINEAR): at t = 1 its top edge is at 1.5, at t = 0.5 at 1.25.
+MORPH_COLOR = [0.2, 0.6, 0.9]
+
+
+def morph_panels(out_dir):
+    """The camera 4 m in front of (0.75, 0.9) sees both panels in a 4:3 view 2.4 m high (33.4
+    degree field): 40 px per metre at 128 x 96. No light, no sidecar."""
+    g = Gltf("morph_panels")
+    m = unlit(g, "MorphUnlit", MORPH_COLOR + [1.0])
+    p = panel(m, -0.5, 0.5, 0.0, 1.0)
+    mesh = g.mesh("Panel", [p])
+    lift = [[0.0, 1.0 if q[1] > 0.5 else 0.0, 0.0] for q in p.positions]
+    tip = [[0.0, 2.0, 0.0] for _ in p.positions]
+    prim(g, mesh, 0)["targets"] = [{"POSITION": g._accessor(lift, "VEC3", True),
+                                    "NORMAL": g._accessor(tip, "VEC3")}]
+    g.doc["meshes"][mesh]["weights"] = [0.5]
+    g.node({"name": "Default", "mesh": mesh})
+    right = g.node({"name": "Animated", "mesh": mesh, "translation": [1.5, 0.0, 0.0]})
+    animate(g, "Lift", right, "weights", [0.0, 2.0], [0.0, 1.0], "SCALAR")
+    g.camera("Camera", [0.75, 0.9, 4.0], [0.75, 0.9, 0.0], 2.0 * math.atan(0.3))
+    g.write(out_dir, None)
+
+
 SCENES = (vertex_colors, texture_transform, texture_filters, normal_map_plane, blend_panels, blend_panels_lit,
-          dielectric_panels, environment_plane, draco_box, blend_shadow)
+          dielectric_panels, environment_plane, draco_box, skinned_bar, morph_panels, blend_shadow)

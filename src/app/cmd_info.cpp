@@ -130,6 +130,8 @@ nlohmann::json to_json(const scene::Scene& s, const scene::SceneFeatures& f,
                    {"texture_transform_materials", f.texture_transform_materials},
                    {"dielectric_materials", f.dielectric_materials},
                    {"vertex_colored_meshes", f.vertex_colored_meshes},
+                   {"skinned_meshes", f.skinned_meshes},
+                   {"morphed_meshes", f.morphed_meshes},
                    {"directional_lights", f.directional_lights},
                    {"point_lights", f.point_lights},
                    {"spot_lights", f.spot_lights},
@@ -168,6 +170,9 @@ void print_text(const scene::Scene& s, const scene::SceneFeatures& f, const scen
   fmt::print("  animations  {}", f.animations);
   if (f.animations) fmt::print(" ({:.2f} s)", f.animation_duration);
   fmt::print("\n");
+  if (!s.deformed.empty())
+    fmt::print("  deformed    {} skinned, {} morphed mesh{} (posed every frame in both renderers)\n",
+               f.skinned_meshes, f.morphed_meshes, s.deformed.size() == 1 ? "" : "es");
   if (f.bounds.empty())
     fmt::print("  bounds      empty\n");
   else

@@ -9,7 +9,8 @@
 // NAME_qs{cols}x{rows}a{aspect}.exr/.png, for stereo the side-by-side pair, and in both cases
 // every view as DIR/view_NN.exr/.png. DIR/reference.json says how it was made. --time-limit
 // applies to each view. With --convergence (one view only) the error of the image after 1, 4,
-// 16, ... spp against the final image.
+// 16, ... spp against the final image. --time poses the scene (node animation, skins, morph
+// targets) at that time, as `ddish render --time` does for its frame 0.
 //
 // Reading the convergence CSV: the image after N spp holds the first N of the final image's M
 // samples per pixel, so the two are correlated and the measured MSE is sigma^2 (1/N - 1/M)
@@ -61,6 +62,7 @@ struct ReferenceArgs {
   LightingArgs lighting;  // --sky, --exposure (shared with `ddish render`)
   int spp = 256;
   double time_limit = 0.0;
+  double time = 0.0;  // scene time (seconds) the scene is posed at
   std::uint64_t seed = 1;
   int bounces = 16;
   std::string out;
@@ -151,6 +153,7 @@ int run_reference(const ReferenceArgs& args) {
   io::check_writable_folder(out_dir);
   if (!args.convergence.empty()) io::check_writable_file(args.convergence);
   scene::Scene s = scene::load_scene(args.scene);
+  s.pose(args.time);
   const std::string framing = frame_camera_less(s, args.view, view_aspect(choice, args.view));
   const std::string environment = apply_lighting(s, args.lighting);
   const display::ViewSet set = make_frame_views(s, choice, args.display, args.view);
@@ -221,6 +224,7 @@ int run_reference(const ReferenceArgs& args) {
   meta["spp_requested"] = args.spp;
   meta["time_limited"] = totals.time_limited;
   meta["seed"] = args.seed;
+  meta["time"] = args.time;
   meta["bounces"] = args.bounces;
   meta["seconds"] = totals.seconds;
   meta["rays"] = totals.rays;
@@ -269,6 +273,8 @@ Action add_reference(CLI::App& root) {
           },
           "SECONDS"));
   cmd->add_option("--seed", args->seed, "random seed")->capture_default_str();
+  cmd->add_option("--time", args->time, "scene time the scene is posed at (seconds), as render's --time")
+      ->capture_default_str();
   cmd->add_option("--bounces", args->bounces, 
                   "scattering events per camera path, the camera ray's hit counting as one: 0 only "
                   "emitters and sky seen directly, 1 direct light only, 2 one indirect bounce, ...")

@@ -57,6 +57,9 @@ void check_probe_options(const ProbeArgs& a) {
 Placement place_probes(const ProbeArgs& a, const scene::Scene& s) {
   const bool sidecar_bounds = s.sidecar.probe_bounds.has_value();
   const scene::Aabb bounds = sidecar_bounds ? *s.sidecar.probe_bounds : s.bounds();
+  if (bounds.empty() && s.triangle_count() == 0)  // points and lines only, or no meshes at all
+    throw std::invalid_argument(s.path + ": the scene has no triangles to draw (points and lines "
+                                "are not drawn; ddish info lists what the loader skipped)");
   if (bounds.empty())
     throw std::invalid_argument(s.path + ": the scene has no geometry to fit a probe grid to "
                                 "(give probe_bounds in its sidecar)");

@@ -42,6 +42,16 @@ Vertex make_vertex(const scene::Mesh& mesh, std::size_t i) {
   return v;
 }
 
+// A deformed mesh's clusters are culled by the mesh's bounds in its current pose: their own
+// bounds and backface cones were computed for the rest pose.
+void fit_to_pose(std::span<Cluster> clusters, const scene::Aabb& bounds) {
+  for (Cluster& c : clusters) {
+    c.min = bounds.empty() ? glm::vec3(0.0f) : bounds.min;
+    c.max = bounds.empty() ? glm::vec3(0.0f) : bounds.max;
+    c.cone_cutoff = 1.0f;
+  }
+}
+
 }  // namespace
 
 GpuMeshes::GpuMeshes(const gpu::Device& device, gpu::CommandRunner& runner,
@@ -62,6 +72,14 @@ GpuMeshes::GpuMeshes(const gpu::Device& device, gpu::CommandRunner& runner,
     clusters_.insert(clusters_.end(), clustered.clusters.begin(), clustered.clusters.end());
     ranges_.push_back(range);
   }
+  versions_.assign(scene.meshes.size(), 0);
+  for (const scene::DeformedMesh& d : scene.deformed) {
+    const auto m = static_cast<std::size_t>(d.mesh);
+    deformed_.push_back(d.mesh);
+    versions_[m] = scene.meshes[m].pose_version;
+    fit_to_pose(std::span<Cluster>(clusters_).subspan(ranges_[m].first_cluster, ranges_[m].cluster_count),
+                scene.meshes[m].bounds);
+  }
   // Vulkan has no empty buffers: a scene without geometry still gets one (unused) element.
   if (vertices.empty()) vertices.push_back(Vertex{});
   if (indices.empty()) indices.push_back(0);
@@ -73,6 +91,25 @@ GpuMeshes::GpuMeshes(const gpu::Device& device, gpu::CommandRunner& runner,
                          gpu::MemoryUse::device_local);
   gpu::upload(device, runner, vertices_, vertices.data(), vertex_bytes);
   gpu::upload(device, runner, indices_, indices.data(), index_bytes);
+}
+
+bool GpuMeshes::update(const gpu::Device& device, gpu::CommandRunner& runner, const scene::Scene& scene) {
+  bool changed = false;
+  std::vector<Vertex> vertices;
+  for (int mesh : deformed_) {
+    const auto m = static_cast<std::size_t>(mesh);
+    const scene::Mesh& posed = scene.meshes[m];
+    if (posed.pose_version == versions_[m] || posed.positions.empty()) continue;
+    vertices.clear();
+    for (std::size_t i = 0; i < posed.positions.size(); ++i) vertices.push_back(make_vertex(posed, i));
+    const MeshRange& r = ranges_[m];
+    gpu::upload(device, runner, vertices_, vertices.data(), vertices.size() * sizeof(Vertex),
+                static_cast<VkDeviceSize>(r.vertex_offset) * sizeof(Vertex));
+    fit_to_pose(std::span<Cluster>(clusters_).subspan(r.first_cluster, r.cluster_count), posed.bounds);
+    versions_[m] = posed.pose_version;
+    changed = true;
+  }
+  return changed;
 }
 
 void GpuMeshes::bind(VkCommandBuffer cmd) const {

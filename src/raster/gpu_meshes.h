@@ -1,6 +1,8 @@
 // Scene geometry on the GPU: every mesh's vertices and indices packed into one vertex buffer and
 // one index buffer, uploaded once. Instances share their mesh's range and differ only in the
-// transform pushed with each draw, so a moving instance costs nothing to re-upload. Each mesh's
+// transform pushed with each draw, so a moving instance costs nothing to re-upload. A deformed
+// mesh (skin, morph targets) has its range re-uploaded from the posed arrays whenever its pose
+// changes (update), so the rasterizer draws the pose the tracer traces. Each mesh's
 // indices are stored in cluster order (raster/clusters.h) so views can draw visible clusters only.
 #pragma once
 
@@ -50,6 +52,11 @@ class GpuMeshes {
  public:
   GpuMeshes(const gpu::Device& device, gpu::CommandRunner& runner, const scene::Scene& scene);
 
+  // Re-uploads the vertices of every deformed mesh whose scene::Mesh::pose_version changed since
+  // its last upload and fits its clusters to the new pose. Returns whether any changed. Work
+  // that reads the buffers must not be in flight.
+  bool update(const gpu::Device& device, gpu::CommandRunner& runner, const scene::Scene& scene);
+
   // Binds the vertex buffer (binding 0) and the index buffer for the draws that follow.
   void bind(VkCommandBuffer cmd) const;
   // Records the draw of mesh `mesh` (its whole index range); nothing for an empty mesh.
@@ -71,6 +78,8 @@ class GpuMeshes {
   gpu::Buffer indices_;
   std::vector<MeshRange> ranges_;
   std::vector<Cluster> clusters_;
+  std::vector<int> deformed_;              // the scene's deformed meshes
+  std::vector<std::uint64_t> versions_;    // per mesh: the pose_version on the GPU
 };
 
 }  // namespace ddish::raster

@@ -283,8 +283,10 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
 
   // The shadow layout (cascades fitted to every view) and the maps are the frame's, drawn by
   // the first batch and read by all.
+  // Deformed meshes posed anew are uploaded before anything draws them; their shadows change.
+  const bool reshaped = meshes_.update(device_, runner_, scene);
   const ShadowLayout layout = layout_shadows(scene.lights, views, scene.bounds(), shadow_settings_);
-  out.stats.shadows_reused = shadows_current(scene, layout.layers);
+  out.stats.shadows_reused = !reshaped && shadows_current(scene, layout.layers);
   std::uint32_t shadow_layers =
       out.stats.shadows_reused ? 0u : static_cast<std::uint32_t>(layout.layers.size());
   for (std::uint32_t first = 0; first < n; first += batch) {

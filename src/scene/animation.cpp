@@ -21,48 +21,73 @@ glm::vec4 slerp(glm::vec4 a, glm::vec4 b, float s) {
   return (std::sin((1.0f - s) * theta) * a + std::sin(s * theta) * b) / sin_theta;
 }
 
-glm::vec4 finish(const glm::vec4& v, AnimPath path) {
-  if (path != AnimPath::Rotation) return v;
-  float len = glm::length(v);
-  return len > 0.0f ? v / len : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-}
+glm::vec4 as_vec4(const float* v) { return {v[0], v[1], v[2], v[3]}; }
 
 }  // namespace
 
-glm::vec4 AnimChannel::sample(float t) const {
-  if (times.empty() || values.empty())
-    return path == AnimPath::Rotation ? glm::vec4(0, 0, 0, 1)
-           : path == AnimPath::Scale  ? glm::vec4(1.0f)
-                                      : glm::vec4(0.0f);
-  bool cubic = interpolation == Interpolation::CubicSpline;
-  // The value of key k: cubic-spline keys store (in-tangent, value, out-tangent).
-  auto value = [&](std::size_t k) { return values[cubic ? 3 * k + 1 : k]; };
-  std::size_t last = times.size() - 1;
-  if (!(t > times.front())) return finish(value(0), path);  // also catches NaN
-  if (t >= times.back()) return finish(value(last), path);
+void AnimChannel::sample(float t, std::span<float> out) const {
+  const auto w = std::size_t(width);
+  const bool rotation = path == AnimPath::Rotation;
+  const bool cubic = interpolation == Interpolation::CubicSpline;
+  const std::size_t per_key = cubic ? 3 : 1;
+  if (times.empty() || w == 0 || out.size() < w || values.size() < times.size() * per_key * w) {
+    // No keys: the neutral value (the identity rotation, unit scale, zero otherwise).
+    std::fill(out.begin(), out.end(), path == AnimPath::Scale ? 1.0f : 0.0f);
+    if (rotation && out.size() >= 4) out[3] = 1.0f;
+    return;
+  }
+  // Key k's value: cubic-spline keys store (in-tangent, value, out-tangent).
+  auto value = [&](std::size_t k) { return values.data() + (cubic ? 3 * k + 1 : k) * w; };
+  auto finish = [&]() {
+    if (!rotation || w != 4) return;
+    const glm::vec4 q = as_vec4(out.data());
+    const float len = glm::length(q);
+    const glm::vec4 n = len > 0.0f ? q / len : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    for (int i = 0; i < 4; ++i) out[std::size_t(i)] = n[i];
+  };
+  auto copy = [&](const float* v) {
+    std::copy(v, v + w, out.begin());
+    finish();
+  };
+  const std::size_t last = times.size() - 1;
+  if (!(t > times.front())) return copy(value(0));  // also catches NaN
+  if (t >= times.back()) return copy(value(last));
 
   // times[k] <= t < times[k + 1]
   std::size_t k = std::size_t(std::upper_bound(times.begin(), times.end(), t) - times.begin()) - 1;
-  float dt = times[k + 1] - times[k];
-  float s = (t - times[k]) / dt;
+  const float dt = times[k + 1] - times[k];
+  const float s = (t - times[k]) / dt;
+  const float* a = value(k);
+  const float* b = value(k + 1);
   switch (interpolation) {
     case Interpolation::Step:
-      return finish(value(k), path);
+      return copy(a);
     case Interpolation::Linear:
-      if (path == AnimPath::Rotation) return finish(slerp(value(k), value(k + 1), s), path);
-      return value(k) + s * (value(k + 1) - value(k));
+      if (rotation && w == 4) {
+        const glm::vec4 q = slerp(as_vec4(a), as_vec4(b), s);
+        for (int i = 0; i < 4; ++i) out[std::size_t(i)] = q[i];
+        return finish();
+      }
+      for (std::size_t i = 0; i < w; ++i) out[i] = a[i] + s * (b[i] - a[i]);
+      return;
     case Interpolation::CubicSpline: {
       // glTF Hermite spline; tangents are per second, so they are scaled by the key interval.
-      float s2 = s * s, s3 = s2 * s;
-      glm::vec4 out_tangent = values[3 * k + 2];
-      glm::vec4 in_tangent = values[3 * (k + 1)];
-      glm::vec4 v = (2.0f * s3 - 3.0f * s2 + 1.0f) * value(k) +
-                    dt * (s3 - 2.0f * s2 + s) * out_tangent +
-                    (-2.0f * s3 + 3.0f * s2) * value(k + 1) + dt * (s3 - s2) * in_tangent;
-      return finish(v, path);
+      const float s2 = s * s, s3 = s2 * s;
+      const float* out_tangent = values.data() + (3 * k + 2) * w;
+      const float* in_tangent = values.data() + 3 * (k + 1) * w;
+      for (std::size_t i = 0; i < w; ++i)
+        out[i] = (2.0f * s3 - 3.0f * s2 + 1.0f) * a[i] + dt * (s3 - 2.0f * s2 + s) * out_tangent[i] +
+                 (-2.0f * s3 + 3.0f * s2) * b[i] + dt * (s3 - s2) * in_tangent[i];
+      return finish();
     }
   }
-  return finish(value(k), path);
+  copy(a);
+}
+
+glm::vec4 AnimChannel::sample(float t) const {
+  float v[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  sample(t, std::span<float>(v, std::size_t(std::clamp(width, 0, 4))));
+  return as_vec4(v);
 }
 
 float Animation::duration() const {

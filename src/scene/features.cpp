@@ -47,6 +47,10 @@ SceneFeatures analyze(const Scene& scene) {
   for (const auto& inst : scene.instances)
     if (!scene.meshes[std::size_t(inst.mesh)].colors.empty()) colored.insert(inst.mesh);
   f.vertex_colored_meshes = colored.size();
+  for (const DeformedMesh& d : scene.deformed) {
+    f.skinned_meshes += d.skin >= 0;
+    f.morphed_meshes += !scene.meshes[std::size_t(d.mesh)].deformation.targets.empty();
+  }
   f.materials_used = used.size();
   f.textures_used = textures.size();
   for (const auto& l : scene.lights) {

@@ -42,6 +42,8 @@ struct SceneFeatures {
   std::size_t texture_transform_materials = 0;  // a texture with a KHR_texture_transform
   std::size_t dielectric_materials = 0;  // KHR_materials_ior / _specular other than glTF's default
   std::size_t vertex_colored_meshes = 0;  // instanced meshes with COLOR_0
+  std::size_t skinned_meshes = 0;  // deformed meshes (Scene::deformed) that a skin moves
+  std::size_t morphed_meshes = 0;  // deformed meshes with morph targets
 
   std::size_t directional_lights = 0;
   std::size_t point_lights = 0;

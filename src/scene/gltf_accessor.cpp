@@ -128,7 +128,7 @@ Span checked_span(const Context& ctx, int view_index, std::size_t offset, std::s
 
 }  // namespace
 
-FloatData read_floats(const Context& ctx, int index, const std::string& what) {
+FloatData read_floats(const Context& ctx, int index, const std::string& what, bool integers) {
   const auto& m = ctx.model;
   if (index < 0 || std::size_t(index) >= m.accessors.size())
     ctx.fail(what + ": accessor " + std::to_string(index) + " does not exist");
@@ -137,7 +137,7 @@ FloatData read_floats(const Context& ctx, int index, const std::string& what) {
   int csize = component_size(acc.componentType);
   if (comps == 0 || csize == 0)
     ctx.fail(what + ": accessor " + std::to_string(index) + " has an invalid type");
-  if (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !acc.normalized)
+  if (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !acc.normalized && !integers)
     ctx.fail(what + ": accessor " + std::to_string(index) +
              " holds integers that are not normalised (quantised geometry is not supported)");
   const std::string label = what + " (accessor " + std::to_string(index) + ")";

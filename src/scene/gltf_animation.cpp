@@ -1,6 +1,7 @@
 // glTF animations to AnimChannels: keyframe times are checked to be finite and increasing and
 // the output accessor to hold one value (three for cubic splines) per key, so sampling never
-// reads past its arrays.
+// reads past its arrays. A "weights" channel's value is one weight per morph target of the
+// node's mesh.
 #include <cmath>
 
 #include "scene/gltf_internal.h"
@@ -23,6 +24,8 @@ void load_animations(const Context& ctx, Scene& scene) {
         ch.path = AnimPath::Rotation;
       else if (gc.target_path == "scale")
         ch.path = AnimPath::Scale;
+      else if (gc.target_path == "weights")
+        ch.path = AnimPath::Weights;
       else {
         scene.warnings.push_back(what + ": '" + gc.target_path + "' animation is ignored");
         continue;
@@ -32,6 +35,14 @@ void load_animations(const Context& ctx, Scene& scene) {
       if (gc.sampler < 0 || std::size_t(gc.sampler) >= ga.samplers.size())
         ctx.fail(what + ": sampler " + std::to_string(gc.sampler) + " does not exist");
       ch.node = gc.target_node;
+      ch.width = ch.path == AnimPath::Rotation ? 4 : 3;
+      if (ch.path == AnimPath::Weights) {
+        ch.width = int(morph_target_count(ctx, gc.target_node));
+        if (ch.width == 0) {
+          scene.warnings.push_back(what + ": 'weights' animation of a node without morph targets is ignored");
+          continue;
+        }
+      }
       const auto& gs = ga.samplers[std::size_t(gc.sampler)];
       if (gs.interpolation == "STEP")
         ch.interpolation = Interpolation::Step;
@@ -52,22 +63,19 @@ void load_animations(const Context& ctx, Scene& scene) {
       ch.times = std::move(in.values);
 
       FloatData out = read_floats(ctx, gs.output, what + " output");
-      int want = ch.path == AnimPath::Rotation ? 4 : 3;
-      std::size_t per_key = ch.interpolation == Interpolation::CubicSpline ? 3 : 1;
-      if (out.components != want || out.count() != ch.times.size() * per_key)
+      const std::size_t per_key = ch.interpolation == Interpolation::CubicSpline ? 3 : 1;
+      // Weights come as scalars, one per target and key; the other paths as vectors.
+      const int components = ch.path == AnimPath::Weights ? 1 : ch.width;
+      const std::size_t want = ch.times.size() * per_key * std::size_t(ch.width) / std::size_t(components);
+      if (out.components != components || out.count() != want)
         ctx.fail(what + ": output holds " + std::to_string(out.count()) + " values of " +
-                 std::to_string(out.components) + " components, expected " +
-                 std::to_string(ch.times.size() * per_key) + " of " + std::to_string(want));
-      ch.values.resize(out.count());
-      for (std::size_t k = 0; k < out.count(); ++k) {
-        glm::vec4 v(0.0f);
-        for (int i = 0; i < want; ++i) {
-          v[i] = out.values[k * std::size_t(want) + std::size_t(i)];
-          if (!std::isfinite(v[i]))
-            ctx.fail(what + ": output value " + std::to_string(k) + " is not finite");
-        }
-        ch.values[k] = v;
-      }
+                 std::to_string(out.components) + " components, expected " + std::to_string(want) +
+                 " of " + std::to_string(components));
+      for (std::size_t k = 0; k < out.values.size(); ++k)
+        if (!std::isfinite(out.values[k]))
+          ctx.fail(what + ": output value " + std::to_string(k / std::size_t(ch.width)) +
+                   " is not finite");
+      ch.values = std::move(out.values);
       anim.channels.push_back(std::move(ch));
     }
     scene.animations.push_back(std::move(anim));

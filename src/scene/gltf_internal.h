@@ -29,12 +29,21 @@ struct FloatData {
 };
 
 // Reads accessor `index` after checking that it and its buffer view lie inside their buffer.
-// `what` names the use ("mesh 'Roof' POSITION") for the error message.
-FloatData read_floats(const Context& ctx, int index, const std::string& what);
+// `what` names the use ("mesh 'Roof' POSITION") for the error message. Integer components that
+// are not normalised are refused unless `integers` (skin joint indices), which reads their values.
+FloatData read_floats(const Context& ctx, int index, const std::string& what, bool integers = false);
 std::vector<std::uint32_t> read_indices(const Context& ctx, int index, const std::string& what);
 
 // Meshes: one Scene::Mesh per triangle primitive; returns, for each glTF mesh, its Scene meshes.
 std::vector<std::vector<int>> load_meshes(const Context& ctx, Scene& scene);
+
+// The number of morph targets of node `node`'s mesh (the most of its primitives; 0 without).
+std::size_t morph_target_count(const Context& ctx, int node);
+
+// Skins (joints, inverse bind matrices) and the meshes they and morph targets deform: fills
+// Scene::skins and Scene::deformed, after place(). A deformed mesh drawn by several nodes gets a
+// copy per further node. Joint indices out of a skin's range fail the load.
+void load_skins(const Context& ctx, Scene& scene);
 
 void load_materials(const Context& ctx, Scene& scene);
 

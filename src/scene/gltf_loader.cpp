@@ -159,6 +159,21 @@ void load_nodes(const gltf::Context& ctx, const std::vector<std::vector<int>>& m
         ctx.fail(what + ": mesh " + std::to_string(gn.mesh) + " does not exist");
       node.meshes = meshes_of[std::size_t(gn.mesh)];
     }
+    if (gn.skin >= 0) {
+      if (std::size_t(gn.skin) >= m.skins.size())
+        ctx.fail(what + ": skin " + std::to_string(gn.skin) + " does not exist");
+      node.skin = gn.skin;
+    }
+    // Morph weights: the node's, else its mesh's, else 0 (missing ones are 0 too).
+    if (const std::size_t targets = gltf::morph_target_count(ctx, int(i)); targets > 0) {
+      const std::vector<double>& w =
+          !gn.weights.empty() ? gn.weights : m.meshes[std::size_t(gn.mesh)].weights;
+      node.weights.assign(targets, 0.0f);
+      for (std::size_t k = 0; k < std::min(targets, w.size()); ++k) {
+        node.weights[k] = float(w[k]);
+        if (!std::isfinite(node.weights[k])) ctx.fail(what + ": morph weight " + std::to_string(k) + " is not finite");
+      }
+    }
   }
   // With one parent each, a node that no walk down from a parentless node reaches is on a
   // cycle; pose() would never place it, so such a file is rejected.
@@ -265,8 +280,6 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   for (const auto& ext : model.extensionsUsed)
     if (!supported_extension(ext))
       scene.warnings.push_back("extension " + ext + " is not supported and is ignored");
-  if (!model.skins.empty())
-    scene.warnings.push_back("skins are ignored (meshes are drawn in bind pose)");
   capture.resize(model.images.size());
   for (std::size_t i = 0; i < model.images.size(); ++i) {
     if (!capture.seen[i])
@@ -286,6 +299,7 @@ Scene load_scene(const std::string& path, const LoadOptions& options) {
   std::vector<std::vector<int>> meshes_of = gltf::load_meshes(ctx, scene);
   load_nodes(ctx, meshes_of, scene);
   place(ctx, scene);
+  gltf::load_skins(ctx, scene);
   gltf::load_animations(ctx, scene);
 
   if (options.read_sidecar) {

@@ -1,8 +1,10 @@
 // glTF primitives to Scene meshes: triangle lists, strips and fans become indexed triangle
 // lists; missing normals and tangents are generated; every index and every vertex value is
 // checked, because the tracer and the rasterizer trust them blindly.
+#include <algorithm>
 #include <cmath>
 
+#include "io/host_memory.h"
 #include "scene/gltf_internal.h"
 #include "scene/tangents.h"
 
@@ -56,6 +58,86 @@ std::vector<glm::vec4> read_colors(const Context& ctx, int accessor, std::size_t
   return out;
 }
 
+bool morphed_attribute(const std::string& key) {
+  return key == "POSITION" || key == "NORMAL" || key == "TANGENT";
+}
+
+// Morph targets: the deltas of POSITION, NORMAL and TANGENT, one per vertex, checked like the
+// attributes they move. Other target attributes (texture coordinates, colours) are left out;
+// load_meshes says so. Targets may share one accessor, so a small file can ask for targets ×
+// vertices deltas: that product is checked against the memory available before any is read.
+std::vector<MorphTarget> read_targets(const Context& ctx, const tinygltf::Primitive& prim,
+                                      std::size_t n, const std::string& what) {
+  std::uint64_t attributes = 0;
+  for (const auto& target : prim.targets)
+    for (const auto& entry : target) attributes += morphed_attribute(entry.first);
+  const std::uint64_t bytes = attributes * std::uint64_t(n) * sizeof(glm::vec3);
+  const std::uint64_t available = io::host_memory_available();
+  if (bytes > available)
+    ctx.fail(what + ": its " + std::to_string(prim.targets.size()) + " morph targets of " +
+             std::to_string(n) + " vertices need " + io::format_bytes(bytes) + ", more than the " +
+             io::format_bytes(available) + " of memory available");
+  std::vector<MorphTarget> targets;
+  for (std::size_t k = 0; k < prim.targets.size(); ++k) {
+    const std::string tw = what + " morph target " + std::to_string(k);
+    MorphTarget t;
+    for (const auto& [key, accessor] : prim.targets[k]) {
+      if (key == "POSITION")
+        t.positions = read_vectors<3>(ctx, accessor, n, tw + " POSITION");
+      else if (key == "NORMAL")
+        t.normals = read_vectors<3>(ctx, accessor, n, tw + " NORMAL");
+      else if (key == "TANGENT")
+        t.tangents = read_vectors<3>(ctx, accessor, n, tw + " TANGENT");
+    }
+    targets.push_back(std::move(t));
+  }
+  return targets;
+}
+
+// JOINTS_n / WEIGHTS_n pairs for n = 0, 1, ...: joint indices are unsigned integers (bytes or
+// shorts), weights floats or normalised integers, finite and not negative.
+SkinInfluences read_influences(const Context& ctx, const tinygltf::Primitive& prim, std::size_t n,
+                               const std::string& what) {
+  std::vector<std::vector<glm::uvec4>> joints;
+  std::vector<std::vector<glm::vec4>> weights;
+  for (int set = 0;; ++set) {
+    const std::string js = "JOINTS_" + std::to_string(set), ws = "WEIGHTS_" + std::to_string(set);
+    const auto j = prim.attributes.find(js), w = prim.attributes.find(ws);
+    if (j == prim.attributes.end() && w == prim.attributes.end()) break;
+    if (j == prim.attributes.end() || w == prim.attributes.end())
+      ctx.fail(what + ": " + (j == prim.attributes.end() ? ws + " without " + js : js + " without " + ws));
+    FloatData jd = read_floats(ctx, j->second, what + " " + js, true);
+    if (jd.components != 4 || jd.count() != n)
+      ctx.fail(what + " " + js + ": expected " + std::to_string(n) + " VEC4 values, accessor " +
+               std::to_string(j->second) + " has " + std::to_string(jd.count()) + " of " +
+               std::to_string(jd.components) + " components");
+    std::vector<glm::uvec4> jv(n);
+    for (std::size_t i = 0; i < 4 * n; ++i) {
+      const float v = jd.values[i];
+      if (!(v >= 0.0f && v <= 65535.0f && v == std::floor(v)))
+        ctx.fail(what + " " + js + ": vertex " + std::to_string(i / 4) +
+                 " has a joint index that is not an unsigned integer (" + std::to_string(v) + ")");
+      jv[i / 4][int(i % 4)] = unsigned(v);
+    }
+    std::vector<glm::vec4> wv = read_vectors<4>(ctx, w->second, n, what + " " + ws);
+    for (std::size_t i = 0; i < n; ++i)
+      if (glm::any(glm::lessThan(wv[i], glm::vec4(0.0f))))
+        ctx.fail(what + " " + ws + ": vertex " + std::to_string(i) + " has a negative weight");
+    joints.push_back(std::move(jv));
+    weights.push_back(std::move(wv));
+  }
+  SkinInfluences out;
+  out.sets = int(joints.size());
+  out.joints.reserve(n * joints.size());
+  out.weights.reserve(n * joints.size());
+  for (std::size_t v = 0; v < n && out.sets > 0; ++v)
+    for (std::size_t k = 0; k < joints.size(); ++k) {
+      out.joints.push_back(joints[k][v]);
+      out.weights.push_back(weights[k][v]);
+    }
+  return out;
+}
+
 // Triangle list indices for a primitive's mode; strips and fans keep a consistent winding.
 std::vector<std::uint32_t> triangulate(const std::vector<std::uint32_t>& idx, int mode,
                                        const Context& ctx, const std::string& what) {
@@ -102,6 +184,8 @@ Mesh load_primitive(const Context& ctx, const tinygltf::Primitive& prim, const s
   if (attr("COLOR_0") >= 0) mesh.colors = read_colors(ctx, attr("COLOR_0"), n, what + " COLOR_0");
   if (attr("TANGENT") >= 0)
     mesh.tangents = read_vectors<4>(ctx, attr("TANGENT"), n, what + " TANGENT");
+  mesh.deformation.targets = read_targets(ctx, prim, n, what);
+  mesh.deformation.influences = read_influences(ctx, prim, n, what);
 
   std::vector<std::uint32_t> idx;
   if (prim.indices >= 0) {
@@ -121,6 +205,7 @@ Mesh load_primitive(const Context& ctx, const tinygltf::Primitive& prim, const s
     ctx.fail(what + ": material " + std::to_string(prim.material) + " does not exist");
   mesh.material = prim.material;
 
+  mesh.deformation.generated_normals = mesh.normals.empty();
   if (mesh.normals.empty()) {
     generate_normals(mesh);
   } else {
@@ -134,10 +219,20 @@ Mesh load_primitive(const Context& ctx, const tinygltf::Primitive& prim, const s
     generate_tangents(
         mesh, mesh.material >= 0 ? materials[std::size_t(mesh.material)].normal_texture.texcoord : 0);
   for (const auto& p : mesh.positions) mesh.bounds.expand(p);
+  if (!mesh.deformation.empty()) mesh.deformation.capture_rest(mesh);
   return mesh;
 }
 
 }  // namespace
+
+std::size_t morph_target_count(const Context& ctx, int node) {
+  const int mesh = ctx.model.nodes[std::size_t(node)].mesh;
+  if (mesh < 0 || std::size_t(mesh) >= ctx.model.meshes.size()) return 0;
+  std::size_t n = 0;
+  for (const auto& prim : ctx.model.meshes[std::size_t(mesh)].primitives)
+    n = std::max(n, prim.targets.size());
+  return n;
+}
 
 std::vector<std::vector<int>> load_meshes(const Context& ctx, Scene& scene) {
   const auto& m = ctx.model;
@@ -154,8 +249,11 @@ std::vector<std::vector<int>> load_meshes(const Context& ctx, Scene& scene) {
         scene.warnings.push_back("mesh '" + name + "': points and lines are not rendered");
         continue;
       }
-      if (!prim.targets.empty())
-        scene.warnings.push_back("mesh '" + name + "': morph targets are ignored");
+      for (std::size_t k = 0; k < prim.targets.size(); ++k)
+        for (const auto& [key, accessor] : prim.targets[k])
+          if (!morphed_attribute(key))
+            scene.warnings.push_back("mesh '" + name + "' morph target " + std::to_string(k) +
+                                     ": " + key + " is not morphed");
       meshes_of[i].push_back(int(scene.meshes.size()));
       scene.meshes.push_back(load_primitive(ctx, prim, name, scene.materials));
     }

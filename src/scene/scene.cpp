@@ -15,8 +15,13 @@ glm::mat4 local_matrix(const Node& n) {
 
 void apply(const AnimChannel& ch, float t, std::vector<Node>& nodes) {
   if (ch.node < 0 || std::size_t(ch.node) >= nodes.size()) return;
-  glm::vec4 v = ch.sample(t);
   Node& n = nodes[std::size_t(ch.node)];
+  if (ch.path == AnimPath::Weights) {
+    n.weights.resize(std::size_t(ch.width));
+    ch.sample(t, n.weights);
+    return;
+  }
+  glm::vec4 v = ch.sample(t);
   switch (ch.path) {
     case AnimPath::Translation:
       n.translation = glm::vec3(v);
@@ -27,7 +32,33 @@ void apply(const AnimChannel& ch, float t, std::vector<Node>& nodes) {
     case AnimPath::Scale:
       n.scale = glm::vec3(v);
       break;
+    case AnimPath::Weights:
+      break;
   }
+}
+
+// Poses a deformed mesh for its node's weights and skin; true when its vertices changed.
+bool pose_deformed(DeformedMesh& d, Scene& scene) {
+  const Node& node = scene.nodes[std::size_t(d.node)];
+  std::vector<glm::mat4> joints;
+  if (d.skin >= 0) {
+    const Skin& skin = scene.skins[std::size_t(d.skin)];
+    // A collapsed node (scale 0) has no inverse; its instance transform collapses the mesh anyway.
+    const glm::mat4 inverse_world =
+        glm::determinant(node.world) != 0.0f ? glm::inverse(node.world) : glm::mat4(1.0f);
+    joints.reserve(skin.joints.size());
+    for (std::size_t j = 0; j < skin.joints.size(); ++j)
+      joints.push_back(joint_matrix(inverse_world, scene.nodes[std::size_t(skin.joints[j])].world,
+                                    skin.inverse_bind[j]));
+  }
+  if (d.posed && d.weights == node.weights && d.joints == joints) return false;
+  d.weights = node.weights;
+  d.joints = std::move(joints);
+  d.posed = true;
+  Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+  pose_mesh(mesh, d.weights, d.joints);
+  ++mesh.pose_version;
+  return true;
 }
 
 }  // namespace
@@ -49,14 +80,17 @@ std::vector<int> Scene::pose(double t) {
     for (int c : node.children) stack.emplace_back(c, node.world);
   }
 
+  std::vector<bool> reshaped(meshes.size(), false);
+  for (DeformedMesh& d : deformed)
+    if (pose_deformed(d, *this)) reshaped[std::size_t(d.mesh)] = true;
+
   std::vector<int> moved;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     Instance& inst = instances[i];
     const glm::mat4 world = nodes[std::size_t(inst.node)].world * inst.local;
-    if (world != inst.transform) {
-      inst.transform = world;
-      moved.push_back(int(i));
-    }
+    const bool changed = world != inst.transform;
+    if (changed) inst.transform = world;
+    if (changed || (inst.mesh >= 0 && reshaped[std::size_t(inst.mesh)])) moved.push_back(int(i));
   }
   for (Light& light : lights) {
     const glm::mat4& w = nodes[std::size_t(light.node)].world;

@@ -15,6 +15,7 @@
 
 #include "scene/aabb.h"
 #include "scene/animation.h"
+#include "scene/deformation.h"
 #include "scene/environment_map.h"
 
 namespace ddish::scene {
@@ -38,15 +39,19 @@ enum class Filter { Nearest, Linear };
 enum class MipFilter { None, Nearest, Linear };
 
 // KHR_texture_transform as the affine map it defines on texture coordinates:
-// uv' = offset + R(rotation) * (scale * uv), with R = [[cos, -sin], [sin, cos]] (the extension's
-// GLSL, mat3(cos, sin, 0, -sin, cos, 0, 0, 0, 1), is column-major). Identity when absent.
+// uv' = offset + R(rotation) * (scale * uv), with R = [[cos, sin], [-sin, cos]]: the UVs turn
+// counter-clockwise as seen in glTF's UV space, where v points down, as the extension's text
+// says. Its GLSL listing, read as column-major, gives the transpose (counter-clockwise with v
+// up); Khronos's TextureTransformTest model, Blender, Babylon.js and three.js follow the text
+// (glTF issue #1563), and with the listing's matrix that model's arrow points at its red
+// "opposite direction" marker. Identity when absent.
 struct TextureTransform {
   glm::vec2 offset{0.0f};
   float rotation = 0.0f;  // radians
   glm::vec2 scale{1.0f};
   // Rows of the 2 x 3 matrix: u' = dot(row0, (u, v, 1)), v' = dot(row1, (u, v, 1)).
-  glm::vec3 row0() const { return {std::cos(rotation) * scale.x, -std::sin(rotation) * scale.y, offset.x}; }
-  glm::vec3 row1() const { return {std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y}; }
+  glm::vec3 row0() const { return {std::cos(rotation) * scale.x, std::sin(rotation) * scale.y, offset.x}; }
+  glm::vec3 row1() const { return {-std::sin(rotation) * scale.x, std::cos(rotation) * scale.y, offset.y}; }
   glm::vec2 apply(glm::vec2 uv) const {
     const glm::vec3 h(uv, 1.0f);
     return {glm::dot(row0(), h), glm::dot(row1(), h)};
@@ -124,7 +129,13 @@ struct Mesh {
   std::vector<glm::vec4> tangents;  // xyz tangent, w handedness; generated when missing
   std::vector<std::uint32_t> indices;  // 3 per triangle
   int material = -1;                   // index into Scene::materials; -1 = glTF default material
-  Aabb bounds;                         // object space
+  Aabb bounds;                         // object space (of the current pose)
+  // Morph targets and skin influences with the rest pose; empty for a rigid mesh. A deformed
+  // mesh's arrays above are its current pose, written by Scene::pose.
+  Deformation deformation;
+  // Counts the times pose() rewrote the arrays, so the tracer and the rasterizer re-upload a
+  // deformed mesh only when its pose changed.
+  std::uint64_t pose_version = 0;
 
   std::size_t triangle_count() const { return indices.size() / 3; }
   // The UV set a texture slot reads (0 or 1).
@@ -143,9 +154,27 @@ struct Node {
   std::vector<int> meshes;  // Scene::meshes drawn at this node (one per glTF primitive)
   int camera = -1;          // index into Scene::cameras
   int light = -1;           // index into Scene::lights
+  int skin = -1;            // index into Scene::skins: skins this node's meshes
+  // Morph-target weights of this node's mesh: the node's "weights", else the mesh's, else 0;
+  // "weights" animation channels drive them.
+  std::vector<float> weights;
 };
 
-// A mesh placed in the world. Instances of the same mesh share its vertex data.
+// A mesh that pose() deforms (morph targets, or skin influences drawn by a node with a skin).
+// Each is drawn by one node only: the loader gives every further node drawing it its own copy,
+// as the pose depends on the node's weights and skin.
+struct DeformedMesh {
+  int mesh = -1;
+  int node = -1;
+  int skin = -1;  // -1: morph targets only
+  // The weights and joint matrices of the last pose, to skip posing when they did not change.
+  std::vector<float> weights;
+  std::vector<glm::mat4> joints;
+  bool posed = false;
+};
+
+// A mesh placed in the world. Instances of the same mesh share its vertex data (a deformed
+// mesh is shared only by the EXT_mesh_gpu_instancing instances of its one node).
 struct Instance {
   int mesh = -1;
   int node = -1;
@@ -227,6 +256,8 @@ struct Scene {
   std::vector<Light> lights;
   std::vector<Camera> cameras;
   std::vector<Animation> animations;
+  std::vector<Skin> skins;
+  std::vector<DeformedMesh> deformed;
   Sidecar sidecar;
   // An equirectangular environment (--environment) in place of the uniform one; the uniform
   // radiance is then 0 (app/lighting_options.h). Every renderer adds both.
@@ -237,8 +268,10 @@ struct Scene {
   std::vector<std::string> warnings;
 
   // Poses the scene at time t (seconds): evaluates every animation, then recomputes node world
-  // transforms, instance transforms, light and camera placements. Returns the indices of the
-  // instances whose transform changed, so consumers rebuild only what moved.
+  // transforms, instance transforms, light and camera placements, and the vertices of deformed
+  // meshes (skins, morph targets). Returns the indices of the instances whose transform or
+  // vertices changed, so consumers rebuild only what moved (a changed mesh has a new
+  // pose_version).
   std::vector<int> pose(double t);
 
   // Duration of the longest animation (0 when there is none).

@@ -57,6 +57,7 @@ std::uint32_t copy_vertex(Mesh& mesh, std::uint32_t v) {
   dup(mesh.uvs);
   dup(mesh.uvs1);
   dup(mesh.colors);
+  mesh.deformation.copy_vertex(v);  // morph deltas and skin influences follow the copy
   return static_cast<std::uint32_t>(mesh.positions.size() - 1);
 }
 

@@ -82,6 +82,7 @@ void alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
+// Copies the mesh's (current) positions into the geometry's vertex buffer.
 void error_callback(void* user, RTCError code, const char* message) {
   auto* last = static_cast<std::string*>(user);
   *last = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
@@ -104,10 +105,14 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const TextureSet& textures) 
     if (inst.mesh >= 0 && static_cast<std::size_t>(inst.mesh) < scene.meshes.size())
       placed += scene.meshes[static_cast<std::size_t>(inst.mesh)].triangle_count();
   }
-  flat_ = scene.animations.empty() && placed <= 4 * own;
+  flat_ = scene.animations.empty() && scene.deformed.empty() && placed <= 4 * own;
 
   mesh_data_.resize(scene.meshes.size());
   mesh_scenes_.assign(scene.meshes.size(), nullptr);
+  deformed_geoms_.assign(scene.meshes.size(), nullptr);
+  mesh_versions_.assign(scene.meshes.size(), 0);
+  std::vector<bool> deformed(scene.meshes.size(), false);
+  for (const scene::DeformedMesh& d : scene.deformed) deformed[static_cast<std::size_t>(d.mesh)] = true;
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
     const scene::Mesh& mesh = scene.meshes[m];
     const scene::Material& mat = scene.material_of(mesh);
@@ -116,12 +121,20 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const TextureSet& textures) 
     mesh_data_[m].triangles = make_triangle_records(mesh);
 
     if (flat_) continue;  // each instance gets its own world-space geometry below
+    // A deformed mesh (skin, morph targets) gets new vertices whenever its pose changes: its
+    // BVH is refitted then, which keeps the tree's topology and recomputes its boxes (Embree
+    // honours a geometry's quality in a scene of quality LOW).
     RTCScene s = rtcNewScene(device_);
-    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry geom = new_triangles(mesh, nullptr, mesh_data_[m]);
+    rtcSetSceneFlags(s, deformed[m] ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_DYNAMIC : RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(s, deformed[m] ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry geom = new_triangles(mesh, nullptr, mesh_data_[m],
+                                     deformed[m] ? RTC_BUILD_QUALITY_REFIT : RTC_BUILD_QUALITY_HIGH);
+    mesh_versions_[m] = mesh.pose_version;
     rtcAttachGeometryByID(s, geom, 0);
-    rtcReleaseGeometry(geom);
+    if (deformed[m])
+      deformed_geoms_[m] = geom;  // kept to rewrite its vertices (released with the scene)
+    else
+      rtcReleaseGeometry(geom);
     rtcCommitScene(s);
     mesh_scenes_[m] = s;
   }
@@ -180,7 +193,8 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const TextureSet& textures) 
   }
 }
 
-RTCGeometry EmbreeScene::new_triangles(const scene::Mesh& mesh, const glm::mat4* world, MeshGeometry& data) {
+RTCGeometry EmbreeScene::new_triangles(const scene::Mesh& mesh, const glm::mat4* world, MeshGeometry& data,
+                                       RTCBuildQuality quality) {
   RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* verts = static_cast<float*>(rtcSetNewGeometryBuffer(
       geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
@@ -188,7 +202,7 @@ RTCGeometry EmbreeScene::new_triangles(const scene::Mesh& mesh, const glm::mat4*
   auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangle_count()));
   std::memcpy(idx, mesh.indices.data(), mesh.triangle_count() * 3 * sizeof(unsigned));
-  rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+  rtcSetGeometryBuildQuality(geom, quality);
   if (data.material->alpha_mode != scene::AlphaMode::Opaque) {
     rtcSetGeometryUserData(geom, &data);
     rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
@@ -214,6 +228,10 @@ void EmbreeScene::release() {
   }
   if (top_ != nullptr) rtcReleaseScene(top_);
   top_ = nullptr;
+  for (RTCGeometry& g : deformed_geoms_) {
+    if (g != nullptr) rtcReleaseGeometry(g);
+    g = nullptr;
+  }
   for (RTCScene& s : mesh_scenes_) {
     if (s != nullptr) rtcReleaseScene(s);
     s = nullptr;
@@ -237,6 +255,7 @@ void EmbreeScene::update(const scene::Scene& scene, std::span<const int> moved) 
       continue;
     }
     const auto k = static_cast<std::size_t>(i);
+    reshape(scene, scene.instances[k].mesh);
     transforms_[k] = InstanceTransform::from(scene.instances[k].transform);
     if (instance_geoms_[k] == nullptr) continue;
     if (flat_) {  // its world-space vertices again
@@ -254,6 +273,20 @@ void EmbreeScene::update(const scene::Scene& scene, std::span<const int> moved) 
     changed = true;
   }
   if (changed) rtcCommitScene(top_);
+}
+
+void EmbreeScene::reshape(const scene::Scene& scene, int mesh) {
+  if (mesh < 0 || static_cast<std::size_t>(mesh) >= deformed_geoms_.size()) return;
+  const auto m = static_cast<std::size_t>(mesh);
+  RTCGeometry geom = deformed_geoms_[m];
+  const scene::Mesh& posed = scene.meshes[m];
+  if (geom == nullptr || mesh_versions_[m] == posed.pose_version) return;
+  write_vertices(posed, nullptr, static_cast<float*>(rtcGetGeometryBufferData(geom, RTC_BUFFER_TYPE_VERTEX, 0)));
+  rtcUpdateGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0);
+  rtcCommitGeometry(geom);
+  rtcCommitScene(mesh_scenes_[m]);
+  update_mesh_triangles(posed, mesh);
+  mesh_versions_[m] = posed.pose_version;
 }
 
 bool EmbreeScene::intersect(const Ray& ray, const RayQuery& query, Hit& hit) const {

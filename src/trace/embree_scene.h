@@ -1,8 +1,10 @@
 // The Embree 3 view of a scene: one triangle geometry per scene::Mesh, each in its own RTCScene,
 // placed in a top-level scene by one RTC_GEOMETRY_TYPE_INSTANCE per scene::Instance (instances
 // share geometry; the instance geometry's ID is the scene's instance index). Moving instances
-// only re-sets their transforms and re-commits the top level.
-// A scene without animation whose instances share little (placed triangles at most four times the
+// only re-sets their transforms and re-commits the top level. A deformed mesh (skin, morph
+// targets; scene::DeformedMesh) is built for refitting: when its pose_version changes, its
+// vertex buffer is rewritten from the posed positions, its BVH refitted and its triangle records
+// rebuilt. A scene without animation or deformed meshes whose instances share little (placed triangles at most four times the
 // meshes' own) is built flat instead: one world-space triangle geometry per instance, its ID
 // the instance index, in one BVH. Rays then skip the instance level (on Sponza, whose mesh boxes
 // overlap, ~11 % of the Embree time); shading is the same. Where two coincident triangles tie
@@ -88,8 +90,8 @@ class EmbreeScene {
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-  // Re-reads the transforms of `moved` instances and re-commits the top level. Not concurrent
-  // with intersect/occluded.
+  // Re-reads the transforms of `moved` instances (and the vertices of their meshes where the
+  // pose changed them) and re-commits the top level. Not concurrent with intersect/occluded.
   void update(const scene::Scene& scene, std::span<const int> moved);
 
   bool intersect(const Ray& ray, const RayQuery& query, Hit& hit) const;
@@ -131,9 +133,12 @@ class EmbreeScene {
  private:
   void release();
   // A committed triangle geometry of `mesh`, its vertices placed by `world` (null: object space),
-  // with the alpha filters when its material needs them.
-  RTCGeometry new_triangles(const scene::Mesh& mesh, const glm::mat4* world, MeshGeometry& data);
+  // with the alpha filters when its material needs them, built at `quality`.
+  RTCGeometry new_triangles(const scene::Mesh& mesh, const glm::mat4* world, MeshGeometry& data,
+                            RTCBuildQuality quality = RTC_BUILD_QUALITY_HIGH);
   static void write_vertices(const scene::Mesh& mesh, const glm::mat4* world, float* out);
+  // Rewrites and refits a deformed mesh whose pose changed since it was last written.
+  void reshape(const scene::Scene& scene, int mesh);
 
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
@@ -144,6 +149,8 @@ class EmbreeScene {
   bool flat_ = false;
   std::vector<InstanceTransform> transforms_;  // per scene::Instance
   std::vector<MeshGeometry> mesh_data_;        // per scene::Mesh (stable addresses: sized once)
+  std::vector<RTCGeometry> deformed_geoms_;    // per scene::Mesh; null unless deformed
+  std::vector<std::uint64_t> mesh_versions_;   // per scene::Mesh: the pose_version written
   std::string error_;                          // the last error Embree reported
   RayRecorder* recorder_ = nullptr;
 };

@@ -43,6 +43,8 @@ GpuTextureSlot slot_of(const scene::TextureSlot& slot, std::size_t texture_count
 
 std::string unsupported_features(const scene::Scene& s) {
   if (s.environment_map) return "an environment map (--environment)";
+  // Their posed vertices change every frame; the acceleration structures only move instances.
+  if (!s.deformed.empty()) return "skinned or morphed meshes";
   return {};
 }
 

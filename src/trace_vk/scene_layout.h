@@ -110,7 +110,7 @@ struct GpuLight {
 inline constexpr int kAlbedoNodes = 32;
 
 // What the GPU tracer does not do yet, for this scene ("" when it can trace it): environment
-// maps. Callers refuse the scene with it.
+// maps, skinned or morphed meshes. Callers refuse the scene with it.
 std::string unsupported_features(const scene::Scene& scene);
 
 // The triangles of `mesh` (indices, 3 per triangle) in Morton order of their centroids.

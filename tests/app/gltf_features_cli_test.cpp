@@ -85,7 +85,7 @@ TEST_F(GltfFeaturesCli, TextureTransformAndSecondUvSetPickTheDerivedTexels) {
   const Probe probes[] = {
       {0, 0.25f, 0.25f, red},   {0, 0.75f, 0.25f, green},  {0, 0.25f, 0.75f, blue},  {0, 0.75f, 0.75f, white},
       {1, 0.25f, 0.25f, green}, {1, 0.75f, 0.25f, red},    {1, 0.25f, 0.75f, white}, {1, 0.75f, 0.75f, blue},
-      {2, 0.25f, 0.25f, green}, {2, 0.75f, 0.25f, white},  {2, 0.25f, 0.75f, red},   {2, 0.75f, 0.75f, blue},
+      {2, 0.25f, 0.25f, blue},  {2, 0.75f, 0.25f, red},    {2, 0.25f, 0.75f, white}, {2, 0.75f, 0.75f, green},
       {3, 0.125f, 0.125f, red}, {3, 0.375f, 0.125f, green}, {3, 0.625f, 0.125f, red}, {3, 0.375f, 0.375f, white},
   };
   const auto images = both("texture_transform.gltf", 128, 32, 4);

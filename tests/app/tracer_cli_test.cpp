@@ -63,6 +63,12 @@ TEST_F(TracerCli, WhatTheVulkanTracerCannotDoIsOneErrorLine) {
   EXPECT_EQ(map.code, 2);
   EXPECT_EQ(map.err.rfind("ddish: error: --tracer vulkan: ", 0), 0u) << map.err;
   EXPECT_EQ(map.err.find('\n'), map.err.size() - 1) << map.err;
+  // Skinned and morphed meshes too: the acceleration structures only move instances.
+  const cli::Result skin = run("probes " + cli::quote(std::string(DDISH_SOURCE_DIR) + "/scenes/skinned_bar.gltf") +
+                               " --tracer vulkan");
+  EXPECT_EQ(skin.code, 2);
+  EXPECT_EQ(skin.err.rfind("ddish: error: --tracer vulkan: ", 0), 0u) << skin.err;
+  EXPECT_EQ(skin.err.find('\n'), skin.err.size() - 1) << skin.err;
 }
 
 }  // namespace

@@ -38,7 +38,8 @@ scene::Scene stepping_light_scene(const glm::vec3& a, const glm::vec3& b) {
   ch.path = scene::AnimPath::Translation;
   ch.interpolation = scene::Interpolation::Step;
   ch.times = {0.0f, 1.0f};
-  ch.values = {glm::vec4(a, 0.0f), glm::vec4(b, 0.0f)};
+  ch.width = 3;
+  ch.values = {a.x, a.y, a.z, b.x, b.y, b.z};
   s.animations.push_back({"step", {ch}});
   s.pose(0.0);
   return s;

@@ -13,13 +13,22 @@ using scene::Interpolation;
 
 namespace {
 
+// Keyframe values as AnimChannel stores them: `width` floats of each vector.
+std::vector<float> flat(const std::vector<glm::vec4>& values, int width) {
+  std::vector<float> out;
+  for (const glm::vec4& v : values)
+    for (int i = 0; i < width; ++i) out.push_back(v[i]);
+  return out;
+}
+
 AnimChannel translation(Interpolation interp, std::vector<float> times,
                         std::vector<glm::vec4> values) {
   AnimChannel c;
   c.path = AnimPath::Translation;
   c.interpolation = interp;
   c.times = std::move(times);
-  c.values = std::move(values);
+  c.width = 3;
+  c.values = flat(values, 3);
   return c;
 }
 
@@ -50,14 +59,15 @@ TEST(Animation, LinearRotationIsSlerp) {
   c.path = AnimPath::Rotation;
   c.times = {0, 1};
   float s = std::sqrt(0.5f);
-  c.values = {{0, 0, 0, 1}, {0, s, 0, s}};  // identity to 90 degrees about Y
+  c.width = 4;
+  c.values = flat({{0, 0, 0, 1}, {0, s, 0, s}}, 4);  // identity to 90 degrees about Y
   glm::vec4 q = c.sample(0.5f);             // 45 degrees: (0, sin 22.5, 0, cos 22.5)
   EXPECT_NEAR(q.y, std::sin(0.3926991f), 1e-6f);
   EXPECT_NEAR(q.w, std::cos(0.3926991f), 1e-6f);
   q = c.sample(0.25f);  // 22.5 degrees; a normalised lerp would give 0.2022 instead of 0.1951
   EXPECT_NEAR(q.y, std::sin(0.19634954f), 1e-6f);
   // The shorter arc: the same rotation stored with opposite sign interpolates identically.
-  c.values[1] = -c.values[1];
+  for (int i = 4; i < 8; ++i) c.values[std::size_t(i)] = -c.values[std::size_t(i)];
   EXPECT_NEAR(std::abs(c.sample(0.5f).y), std::sin(0.3926991f), 1e-6f);
 }
 
@@ -78,6 +88,24 @@ TEST(Animation, CubicSplineUsesScaledTangents) {
   EXPECT_FLOAT_EQ(c.sample(1.5f).x, 0.25f);
   EXPECT_FLOAT_EQ(c.sample(0.0f).x, 0.0f);  // the value, not the in-tangent
   EXPECT_FLOAT_EQ(c.sample(5.0f).x, 1.0f);
+}
+
+// A "weights" channel is as wide as the mesh has targets (here 5, more than a vec4 holds).
+TEST(Animation, WeightsChannelSamplesEveryTarget) {
+  AnimChannel c;
+  c.path = AnimPath::Weights;
+  c.width = 5;
+  c.times = {0, 2};
+  c.values = {0, 1, 2, 3, 4, 4, 3, 2, 1, 0};
+  float w[5];
+  c.sample(0.5f, w);  // a quarter of the way
+  const float want[5] = {1.0f, 1.5f, 2.0f, 2.5f, 3.0f};
+  for (int i = 0; i < 5; ++i) EXPECT_FLOAT_EQ(w[i], want[i]) << i;
+  c.interpolation = Interpolation::Step;
+  c.sample(1.9f, w);
+  for (int i = 0; i < 5; ++i) EXPECT_FLOAT_EQ(w[i], float(i)) << i;
+  c.sample(3.0f, w);  // clamped at the last key
+  for (int i = 0; i < 5; ++i) EXPECT_FLOAT_EQ(w[i], float(4 - i)) << i;
 }
 
 TEST(Animation, Duration) {

@@ -49,10 +49,10 @@ TEST(GltfFeatures, TextureSetsTransformsAndFilters) {
   const scene::TextureSlot& offset = s.materials[1].base_color_texture;
   EXPECT_EQ(offset.texcoord, 0);
   EXPECT_FLOAT_EQ(offset.transform.apply({0.25f, 0.25f}).x, 0.75f);
-  // Rotation pi/2, offset (1, 0): (u, v) -> (1 - v, u).
+  // Rotation pi/2, offset (0, 1): (u, v) -> (v, 1 - u).
   const glm::vec2 r = s.materials[2].base_color_texture.transform.apply({0.25f, 0.75f});
-  EXPECT_NEAR(r.x, 0.25f, 1e-6f);
-  EXPECT_NEAR(r.y, 0.25f, 1e-6f);
+  EXPECT_NEAR(r.x, 0.75f, 1e-6f);
+  EXPECT_NEAR(r.y, 0.75f, 1e-6f);
   const scene::TextureSlot& scaled = s.materials[3].base_color_texture;
   EXPECT_EQ(scaled.texcoord, 1);  // the extension's texCoord overrides the texture info's 0
   EXPECT_FLOAT_EQ(scaled.transform.area_scale(), 4.0f);
