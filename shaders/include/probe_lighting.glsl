@@ -70,7 +70,9 @@ layout(set = BRDF_SET, binding = 2, std140) uniform BrdfGgxZhBlock {
 const float PROBE_PI = 3.14159265358979;
 
 // Fetches slot texture t at uvw into s[4t .. 4t+3]; the #if keeps constant indices in range.
-#define PROBE_FETCH(t) { const vec4 v_ = texture(probe_sh[t], uvw); \
+// Explicit LOD 0: the textures have one level, and an implicit-LOD fetch makes lavapipe compute
+// derivatives and a level per fetch (a quarter of a Sponza view's shading time, measured).
+#define PROBE_FETCH(t) { const vec4 v_ = textureLod(probe_sh[t], uvw, 0.0); \
   s[4 * t] = v_.x; s[4 * t + 1] = v_.y; s[4 * t + 2] = v_.z; s[4 * t + 3] = v_.w; }
 
 void probe_fetch_slots(vec3 uvw, out float s[4 * PROBE_SH_TEXTURES]) {
@@ -199,10 +201,13 @@ vec2 brdf_node_uv(vec2 v, vec2 size) { return (clamp(v, 0.0, 1.0) * (size - 1.0)
 
 // Split-sum environment BRDF: the specular reflectance under uniform light is
 // F0 * dfg.x + dfg.y (BrdfTables: GGX, height-correlated Smith, Schlick, as trace::Bsdf).
-vec2 brdf_dfg(float n_dot_v, float roughness) {
+// brdf_dfg_at takes the table's coordinate x = cbrt(n.v) itself, for a shader that has it.
+vec2 brdf_dfg_at(float x, float roughness) {
   const vec2 size = vec2(textureSize(brdf_dfg_table, 0));
-  const float x = pow(clamp(n_dot_v, 0.0, 1.0), 1.0 / 3.0);
-  return texture(brdf_dfg_table, brdf_node_uv(vec2(x, roughness), size)).xy;
+  return textureLod(brdf_dfg_table, brdf_node_uv(vec2(x, roughness), size), 0.0).xy;
+}
+vec2 brdf_dfg(float n_dot_v, float roughness) {
+  return brdf_dfg_at(pow(clamp(n_dot_v, 0.0, 1.0), 1.0 / 3.0), roughness);
 }
 
 // 1 - E(n.v) of the dielectric layer at this roughness: the factor by which the tracer's
@@ -214,7 +219,7 @@ float brdf_diffuse_scale(float n_dot_v, float roughness) {
   const float x = pow(clamp(n_dot_v, 0.0, 1.0), 1.0 / 3.0);
   const float y = 1.0 - log(alpha) / log(1e-3);
   const vec2 size = vec2(textureSize(brdf_layer_transmission, 0));
-  return texture(brdf_layer_transmission, brdf_node_uv(vec2(x, y), size)).x;
+  return textureLod(brdf_layer_transmission, brdf_node_uv(vec2(x, y), size), 0.0).x;
 }
 
 #endif  // DDISH_PROBE_LIGHTING_GLSL
