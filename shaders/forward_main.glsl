@@ -85,7 +85,9 @@ void locate(float v, int nodes, out int i, out float t) {
 }
 
 // The tables' cosine coordinate, cbrt(mu): computed once per cosine and shared by every table
-// read at it (pow is dear on CPU devices, where it was a large part of the shader's time).
+// read at it. On lavapipe the table reads with their cube roots (seven of each per pixel before)
+// were roughly a quarter of a Sponza view's shading time (446 against 588 ms of CPU per frame
+// with them replaced by constants, one run on a loaded machine).
 float cosine_coordinate(float mu) { return pow(clamp(mu, 0.0, 1.0), 1.0 / 3.0); }
 
 // E(mu) and dE/dF0(mu) at the roughness slice (r, tr) and cosine coordinate x: the two tables
