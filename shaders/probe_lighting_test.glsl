@@ -22,11 +22,10 @@ layout(push_constant) uniform Params { uint count; } params;
 const uint kIrradiance = 0u;
 const uint kSpecular = 1u;
 const uint kDfg = 2u;
-const uint kDiffuseScale = 3u;
-const uint kGgxZh = 4u;
-const uint kInterpolatedL0 = 5u;  // the interpolated band-0 coefficient and the weight flag
-const uint kLightingIrradiance = 6u;  // probe_lighting's two outputs
-const uint kLightingSpecular = 7u;
+const uint kGgxZh = 3u;
+const uint kInterpolatedL0 = 4u;  // the interpolated band-0 coefficient and the weight flag
+const uint kLightingIrradiance = 5u;  // probe_lighting's two outputs
+const uint kLightingSpecular = 6u;
 
 void main() {
   const uint i = gl_GlobalInvocationID.x;
@@ -40,8 +39,6 @@ void main() {
     r.xyz = probe_specular(q.a.xyz, q.b.xyz, q.a.w);
   } else if (kind == kDfg) {
     r.xy = brdf_dfg(q.a.x, q.a.w);
-  } else if (kind == kDiffuseScale) {
-    r.x = brdf_diffuse_scale(q.a.x, q.a.w);
   } else if (kind == kGgxZh) {
     r = brdf_ggx_zh(q.a.w);
   } else if (kind == kInterpolatedL0) {

@@ -1,10 +1,11 @@
 // Indirect light from the SH probe volume (src/raster/probe_textures.h uploads it) and the BRDF
 // tables of the split-sum approximation (src/raster/brdf_tables.h). A forward shader computes
-//   indirect = albedo (1 - metallic) brdf_diffuse_scale(NoV, roughness) / pi
+//   indirect = albedo (1 - metallic) (1 - E(NoV, roughness)) / pi
 //                * probe_irradiance(p, n) * occlusion
 //            + (F0 dfg.x + dfg.y) * probe_specular(p, reflect(-v, n), roughness),
 //   dfg = brdf_dfg(NoV, roughness),
-// which matches the path tracer's BSDF (src/trace/bsdf.cpp) under the probes' radiance.
+// which matches the path tracer's BSDF (src/trace/bsdf.cpp) under the probes' radiance; E is the
+// dielectric layer's directional albedo (forward_main.glsl reads it from the tracer's table).
 // probe_lighting(p, n, reflect(-v, n), roughness, E, L) returns both probe terms from one
 // interpolation (half the fetches); probe_interpolate + probe_sh_irradiance/probe_sh_specular
 // are the pieces, for shaders that want the interpolated SH themselves.
@@ -59,18 +60,18 @@ layout(set = PROBE_SET, binding = 1) uniform sampler3D probe_sh[PROBE_SH_TEXTURE
 // Set BRDF_SET, binding 0: DFG (scale, bias) over (cbrt(n.v), roughness), nodes at texel
 // centres (raster::DfgTable).
 layout(set = BRDF_SET, binding = 0) uniform sampler2D brdf_dfg_table;
-// Set BRDF_SET, binding 1: 1 - E(mu, roughness) of the 0.04 dielectric layer over
-// (cbrt(mu), log-alpha coordinate), the nodes of trace::DielectricSpecularAlbedo at texel centres.
-layout(set = BRDF_SET, binding = 1) uniform sampler2D brdf_layer_transmission;
-// Set BRDF_SET, binding 2: sh::ggx_zh_table(), bands 1..4 in xyzw, node j at roughness j / 64.
-layout(set = BRDF_SET, binding = 2, std140) uniform BrdfGgxZhBlock {
+// Set BRDF_SET, binding 1: sh::ggx_zh_table(), bands 1..4 in xyzw, node j at roughness j / 64.
+layout(set = BRDF_SET, binding = 1, std140) uniform BrdfGgxZhBlock {
   vec4 brdf_ggx_zh_nodes[BRDF_GGX_ZH_NODES];
 };
 
 const float PROBE_PI = 3.14159265358979;
 
 // Fetches slot texture t at uvw into s[4t .. 4t+3]; the #if keeps constant indices in range.
-#define PROBE_FETCH(t) { const vec4 v_ = texture(probe_sh[t], uvw); \
+// Explicit LOD 0: the textures have one level, and an implicit-LOD fetch makes lavapipe compute
+// derivatives and a level per fetch (on Mesa 25, one Sponza view at MSAA 4: 430 against 586 ms of
+// CPU per frame in one paired run on a loaded machine, so roughly, not exactly, a quarter).
+#define PROBE_FETCH(t) { const vec4 v_ = textureLod(probe_sh[t], uvw, 0.0); \
   s[4 * t] = v_.x; s[4 * t + 1] = v_.y; s[4 * t + 2] = v_.z; s[4 * t + 3] = v_.w; }
 
 void probe_fetch_slots(vec3 uvw, out float s[4 * PROBE_SH_TEXTURES]) {
@@ -199,22 +200,13 @@ vec2 brdf_node_uv(vec2 v, vec2 size) { return (clamp(v, 0.0, 1.0) * (size - 1.0)
 
 // Split-sum environment BRDF: the specular reflectance under uniform light is
 // F0 * dfg.x + dfg.y (BrdfTables: GGX, height-correlated Smith, Schlick, as trace::Bsdf).
-vec2 brdf_dfg(float n_dot_v, float roughness) {
+// brdf_dfg_at takes the table's coordinate x = cbrt(n.v) itself, for a shader that has it.
+vec2 brdf_dfg_at(float x, float roughness) {
   const vec2 size = vec2(textureSize(brdf_dfg_table, 0));
-  const float x = pow(clamp(n_dot_v, 0.0, 1.0), 1.0 / 3.0);
-  return texture(brdf_dfg_table, brdf_node_uv(vec2(x, roughness), size)).xy;
+  return textureLod(brdf_dfg_table, brdf_node_uv(vec2(x, roughness), size), 0.0).xy;
 }
-
-// 1 - E(n.v) of the dielectric layer at this roughness: the factor by which the tracer's
-// albedo-scaled diffuse lobe under uniform light differs from Lambert (the cosine-weighted
-// mean of its (1 - E(n.l)) / (1 - E_avg) factor is 1 by construction).
-float brdf_diffuse_scale(float n_dot_v, float roughness) {
-  const float r = clamp(roughness, 0.0, 1.0);
-  const float alpha = max(r * r, 1e-3);
-  const float x = pow(clamp(n_dot_v, 0.0, 1.0), 1.0 / 3.0);
-  const float y = 1.0 - log(alpha) / log(1e-3);
-  const vec2 size = vec2(textureSize(brdf_layer_transmission, 0));
-  return texture(brdf_layer_transmission, brdf_node_uv(vec2(x, y), size)).x;
+vec2 brdf_dfg(float n_dot_v, float roughness) {
+  return brdf_dfg_at(pow(clamp(n_dot_v, 0.0, 1.0), 1.0 / 3.0), roughness);
 }
 
 #endif  // DDISH_PROBE_LIGHTING_GLSL

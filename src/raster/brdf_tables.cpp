@@ -13,28 +13,10 @@
 #include "sh/ggx_zh.h"
 #include "sh/packing.h"
 #include "trace/ggx.h"
-#include "trace/specular_albedo.h"
 
 namespace ddish::raster {
 
 namespace {
-
-// 1 - E at the tracer's table nodes: x = cbrt(mu) = c / (n - 1) and
-// y = 1 - log(alpha) / log(kMinAlpha) = r / (n - 1), i.e. alpha = kMinAlpha^(1 - y).
-std::vector<std::uint16_t> layer_transmission_texels() {
-  using Table = trace::DielectricSpecularAlbedo;
-  const Table& table = Table::get();
-  std::vector<std::uint16_t> texels;
-  for (int r = 0; r < Table::kRoughnessNodes; ++r) {
-    const float y = float(r) / float(Table::kRoughnessNodes - 1);
-    const float roughness = std::sqrt(std::pow(trace::Ggx::kMinAlpha, 1.0f - y));
-    for (int c = 0; c < Table::kCosNodes; ++c) {
-      const float x = float(c) / float(Table::kCosNodes - 1);
-      texels.push_back(sh::float_to_half(1.0f - table.directional(x * x * x, roughness)));
-    }
-  }
-  return texels;
-}
 
 std::vector<std::uint16_t> dfg_texels(const DfgTable& dfg) {
   std::vector<std::uint16_t> texels;
@@ -79,7 +61,6 @@ BrdfTables::BrdfTables(const gpu::Device& device, gpu::CommandRunner& runner, Df
 }
 
 void BrdfTables::create(const gpu::Device& device, gpu::CommandRunner& runner) {
-  using Table = trace::DielectricSpecularAlbedo;
   const auto dfg_size = std::uint32_t(dfg_.size);
   if (dfg_.size < 2 || dfg_.values.size() != std::size_t(dfg_.size) * std::size_t(dfg_.size))
     throw gpu::GpuError("DFG table has no size x size nodes");
@@ -87,22 +68,12 @@ void BrdfTables::create(const gpu::Device& device, gpu::CommandRunner& runner) {
                                    .height = dfg_size,
                                    .format = VK_FORMAT_R16G16_SFLOAT,
                                    .usage = VK_IMAGE_USAGE_SAMPLED_BIT});
-  layer_image_ = gpu::Image(device, {.width = std::uint32_t(Table::kCosNodes),
-                                     .height = std::uint32_t(Table::kRoughnessNodes),
-                                     .format = VK_FORMAT_R16_SFLOAT,
-                                     .usage = VK_IMAGE_USAGE_SAMPLED_BIT});
 
   const std::vector<std::uint16_t> dfg_data = dfg_texels(dfg_);
-  const std::vector<std::uint16_t> layer_data = layer_transmission_texels();
   const VkDeviceSize dfg_bytes = dfg_data.size() * sizeof(std::uint16_t);
-  const VkDeviceSize layer_bytes = layer_data.size() * sizeof(std::uint16_t);
-  gpu::Buffer staging(device, dfg_bytes + layer_bytes, 0, gpu::MemoryUse::upload);
+  gpu::Buffer staging(device, dfg_bytes, 0, gpu::MemoryUse::upload);
   staging.write(dfg_data.data(), dfg_bytes);
-  staging.write(layer_data.data(), layer_bytes, dfg_bytes);  // dfg_bytes is a multiple of 4
-  runner.run([&](VkCommandBuffer cmd) {
-    record_image_upload(cmd, dfg_image_, staging, 0);
-    record_image_upload(cmd, layer_image_, staging, dfg_bytes);
-  });
+  runner.run([&](VkCommandBuffer cmd) { record_image_upload(cmd, dfg_image_, staging, 0); });
 
   // std140 array of vec4: bands 1..4 of every node (band 0 is 1 by definition).
   const sh::GgxZhTable& zh = sh::ggx_zh_table();
@@ -116,17 +87,12 @@ void BrdfTables::create(const gpu::Device& device, gpu::CommandRunner& runner) {
   sampler_ = make_linear_clamp_sampler(vk);
   const VkDescriptorSetLayoutBinding bindings[] = {
       {kDfgBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_ALL, nullptr},
-      {kLayerTransmissionBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
-       VK_SHADER_STAGE_ALL, nullptr},
       {kGgxZhBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_ALL, nullptr},
   };
   descriptors_ = OwnedDescriptorSet(vk, bindings);
   const VkDescriptorImageInfo dfg_info{sampler_.get(), dfg_image_.view(),
                                        VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-  const VkDescriptorImageInfo layer_info{sampler_.get(), layer_image_.view(),
-                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   descriptors_.write_images(kDfgBinding, {&dfg_info, 1});
-  descriptors_.write_images(kLayerTransmissionBinding, {&layer_info, 1});
   descriptors_.write_uniform_buffer(kGgxZhBinding, ggx_zh_buffer_.descriptor());
 }
 

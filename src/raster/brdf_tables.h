@@ -3,11 +3,10 @@
 // shaders/include/probe_lighting.glsl, which reads them):
 //   binding 0  sampler2D brdf_dfg_table: RG16F, the split-sum DFG (scale, bias) of brdf_dfg.h
 //              over (cbrt(n.v), roughness), size x size nodes at texel centres (32 x 32)
-//   binding 1  sampler2D brdf_layer_transmission: R16F, 1 - E(mu, roughness) of the 0.04
-//              dielectric layer, the 32 x 32 nodes of trace::DielectricSpecularAlbedo at texel
-//              centres, over (cbrt(mu), log-alpha coordinate), so bilinear filtering reproduces
-//              the tracer's interpolation: the diffuse term's view-dependent scale
-//   binding 2  uniform BrdfGgxZhBlock: sh::ggx_zh_table(), 65 vec4 of bands 1..4 (std140)
+//   binding 1  uniform BrdfGgxZhBlock: sh::ggx_zh_table(), 65 vec4 of bands 1..4 (std140)
+// The diffuse term's view-dependent scale 1 - E(n.v) is not here: the forward shader reads it
+// from the tracer's own albedo table in the frame set (raster/frame_resources.h), which its
+// direct light needs anyway.
 // All are visible to every stage; the samplers filter linearly and clamp to the edge.
 #pragma once
 
@@ -30,11 +29,10 @@ namespace ddish::raster {
 class BrdfTables {
  public:
   static constexpr std::uint32_t kDfgBinding = 0;
-  static constexpr std::uint32_t kLayerTransmissionBinding = 1;
-  static constexpr std::uint32_t kGgxZhBinding = 2;
+  static constexpr std::uint32_t kGgxZhBinding = 1;
 
-  // Computes the DFG table (compute_dfg_table() at its defaults), builds the other two from
-  // trace::DielectricSpecularAlbedo and sh::ggx_zh_table(), uploads all three and waits.
+  // Computes the DFG table (compute_dfg_table() at its defaults), builds the ZH table from
+  // sh::ggx_zh_table(), uploads both and waits.
   BrdfTables(const gpu::Device& device, gpu::CommandRunner& runner);
   // The same with a DFG table computed (or cached) by the caller.
   BrdfTables(const gpu::Device& device, gpu::CommandRunner& runner, DfgTable dfg);
@@ -52,7 +50,6 @@ class BrdfTables {
   DfgTable dfg_;
   double dfg_ms_ = 0.0;
   gpu::Image dfg_image_;
-  gpu::Image layer_image_;
   gpu::Buffer ggx_zh_buffer_;
   Sampler sampler_;
   OwnedDescriptorSet descriptors_;

@@ -99,6 +99,29 @@ TEST_F(ConstantProbeTest, DiffuseSphereReflectsAlbedoScaledRadiance) {
   EXPECT_EQ(c.bad, 0) << "worst relative error " << c.worst;
 }
 
+// A dielectric layer other than glTF's default (KHR_materials_ior, KHR_materials_specular): the
+// diffuse base is scaled by 1 - E(n.v) of that layer, weight (E + (F0 - 0.04) dE/dF0) per
+// channel, read from the tracer's table as the direct light's is.
+TEST_F(ConstantProbeTest, DiffuseSphereUnderOwnDielectricLayer) {
+  const glm::vec3 albedo(0.7f, 0.5f, 0.3f);
+  const float roughness = 0.9f;
+  scene::Material material = make_material(albedo, 0.0f, roughness);
+  material.ior = 2.0f;  // F0 = 1/9 before the colour
+  material.specular = 0.8f;
+  material.specular_color = glm::vec3(1.0f, 0.5f, 0.25f);
+  const glm::vec3 f0 = material.dielectric_f0();
+  const auto& table = trace::DielectricSpecularAlbedo::get();
+  const Checked c = render_and_check(device(), material, false, [&](float nov) {
+    const glm::vec3 layer = material.specular * (table.directional(nov, roughness) +
+                                                 (f0 - 0.04f) * table.directional_slope(nov, roughness));
+    return albedo * (1.0f - layer) * kRadiance;
+  });
+  std::printf("diffuse sphere under an ior 2 layer: %d pixels, worst relative error %.4f\n", c.pixels,
+              c.worst);
+  EXPECT_GT(c.pixels, 1000);
+  EXPECT_EQ(c.bad, 0) << "worst relative error " << c.worst;
+}
+
 TEST_F(ConstantProbeTest, GlossyMetalSphereReflectsSplitSum) {
   const glm::vec3 base(0.95f, 0.64f, 0.54f);
   const float roughness = 0.3f;

@@ -28,11 +28,10 @@ enum class Kind {
   irradiance = 0,
   specular = 1,
   dfg = 2,
-  diffuse_scale = 3,
-  ggx_zh = 4,
-  l0 = 5,
-  lighting_irradiance = 6,  // probe_lighting(), normal: lighting_normal(reflected direction)
-  lighting_specular = 7,
+  ggx_zh = 3,
+  l0 = 4,
+  lighting_irradiance = 5,  // probe_lighting(), normal: lighting_normal(reflected direction)
+  lighting_specular = 6,
 };
 
 struct Query {
