@@ -43,6 +43,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "bench_grid.h"
 #include "probes/probe_grid.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
@@ -71,25 +72,8 @@ double cpu_seconds() {
   return s(u.ru_utime) + s(u.ru_stime);
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
-glm::ivec3 parse_grid(const std::string& text) {
-  glm::ivec3 c{0};
-  if (std::sscanf(text.c_str(), "%d,%d,%d", &c.x, &c.y, &c.z) != 3 || c.x < 1 || c.y < 1 || c.z < 1)
-    throw std::invalid_argument("--grid needs three positive counts X,Y,Z, got '" + text + "'");
-  return c;
-}
 
-probes::ProbeGrid place(const scene::Scene& s, const std::string& grid) {
-  const scene::Aabb bounds = s.sidecar.probe_bounds ? *s.sidecar.probe_bounds : s.bounds();
-  if (!grid.empty()) return probes::ProbeGrid(bounds, parse_grid(grid));
-  if (s.sidecar.probe_counts) return probes::ProbeGrid(bounds, *s.sidecar.probe_counts);
-  return probes::ProbeGrid::fit_auto(bounds);
-}
 
 // One flat Embree scene of every instance's triangles in world space: the cheapest closest-hit
 // structure Embree offers for these rays (no instancing level, no filter callbacks).
@@ -229,7 +213,7 @@ int main(int argc, char** argv) try {
   const int used_threads = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
 
   const scene::Scene s = scene::load_scene(path);
-  const probes::ProbeGrid probe_grid = place(s, grid);
+  const probes::ProbeGrid probe_grid = bench::place_grid(s, grid);
   trace::PathOptions path_options;
   path_options.max_bounces = bounces;
   trace::Tracer tracer(s, path_options);
@@ -270,10 +254,10 @@ int main(int argc, char** argv) try {
       scene_s.push_back(seconds_since(t0));
       scene_cpu.push_back(cpu_seconds() - c1);
     }
-    floor_s.push_back(median(flat_s));
-    floor_cpu.push_back(median(flat_cpu));
-    scene_floor_cpu.push_back(median(scene_cpu));
-    scene_floor_s.push_back(median(scene_s));
+    floor_s.push_back(bench::median(flat_s));
+    floor_cpu.push_back(bench::median(flat_cpu));
+    scene_floor_cpu.push_back(bench::median(scene_cpu));
+    scene_floor_s.push_back(bench::median(scene_s));
     hits_v.push_back(floor_hits);
     shadow_v.push_back(std::uint64_t(std::count_if(rays.begin(), rays.end(),
                                               [](const trace::RecordedRay& r) { return r.occlusion; })));

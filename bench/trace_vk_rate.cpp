@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "gpu/context.h"
+#include "bench_grid.h"
 #include "probes/probe_grid.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
@@ -41,23 +42,7 @@ struct Rate {
   std::uint32_t probes = 0;
 };
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
-probes::ProbeGrid place(const scene::Scene& s, const std::string& grid) {
-  const scene::Aabb bounds = s.sidecar.probe_bounds ? *s.sidecar.probe_bounds : s.bounds();
-  if (!grid.empty()) {
-    glm::ivec3 c{0};
-    if (std::sscanf(grid.c_str(), "%d,%d,%d", &c.x, &c.y, &c.z) != 3 || c.x < 1 || c.y < 1 || c.z < 1)
-      throw std::invalid_argument("--grid needs three positive counts X,Y,Z, got '" + grid + "'");
-    return probes::ProbeGrid(bounds, c);
-  }
-  if (s.sidecar.probe_counts) return probes::ProbeGrid(bounds, *s.sidecar.probe_counts);
-  return probes::ProbeGrid::fit_auto(bounds);
-}
 
 Rate measure(const probes::ProbeUpdater& updater, const probes::ProbeGrid& grid, int updates) {
   probes::ProbeVolume volume(grid, probes::kDefaultShOrder);
@@ -71,7 +56,7 @@ Rate measure(const probes::ProbeUpdater& updater, const probes::ProbeGrid& grid,
     total_s += u.seconds;
     total_rays += double(u.rays);
   }
-  return {median(ms), median(rays), total_s > 0.0 ? total_rays / total_s * 1e-6 : 0.0, volume.active_count()};
+  return {bench::median(ms), bench::median(rays), total_s > 0.0 ? total_rays / total_s * 1e-6 : 0.0, volume.active_count()};
 }
 
 }  // namespace
@@ -103,7 +88,7 @@ int main(int argc, char** argv) try {
     throw std::invalid_argument("--tracers is both, vulkan or embree, got '" + tracers + "'");
 
   const scene::Scene s = scene::load_scene(path);
-  const probes::ProbeGrid grid_used = place(s, grid);
+  const probes::ProbeGrid grid_used = bench::place_grid(s, grid);
   trace::PathOptions path_options;
   path_options.max_bounces = bounces;
   probes::UpdateOptions options;
