@@ -18,24 +18,34 @@ using cli::Result;
 class DeformationCli : public cli::TempDirTest {
  protected:
   DeformationCli() : TempDirTest("ddish_deformation_cli_") {}
+
+  // scenes/NAME at 128 x 96 through `reference` (into ref/) and `render` (into r/), each with its
+  // own options; returns `ddish info`'s text, checked for the deformed-mesh count line `counts`.
+  std::string run_both(const std::string& name, const std::string& ref_args, const std::string& render_args,
+                       const std::string& counts) {
+    const std::string scene = quote(std::string(DDISH_SOURCE_DIR) + "/scenes/" + name);
+    const std::string size = " --width 128 --height 96";
+    Result ref = run("reference " + scene + size + ref_args + " --out " + path("ref"));
+    EXPECT_EQ(ref.code, 0) << ref.err;
+    Result render = run("render " + scene + size + render_args + " --out " + path("r"));
+    EXPECT_EQ(render.code, 0) << render.err;
+    Result info = run("info " + scene);
+    EXPECT_EQ(info.code, 0) << info.err;
+    EXPECT_NE(info.out.find(counts), std::string::npos) << info.out;
+    return info.out;
+  }
 };
 
 // scenes/skinned_bar.gltf at 128 x 96: 40.7 px per metre at the bar's front faces (z = 0.1,
 // 5.9 m from the camera at x = -0.45, y = 1). Pixel (58, 48) is the bent upper half at
 // (-0.6, 1.0), (82, 24) the upright one at (0, 1.6), (82, 68) the lower half at (0, 0.5).
 TEST_F(DeformationCli, SkinnedBarBendsInRenderAndReference) {
-  const std::string scene = quote(std::string(DDISH_SOURCE_DIR) + "/scenes/skinned_bar.gltf");
-  const std::string size = " --width 128 --height 96";
-  Result ref = run("reference " + scene + size + " --time 1 --spp 16 --out " + path("ref"));
-  ASSERT_EQ(ref.code, 0) << ref.err;
-  // Frame 0 at t = 0 (rest), frame 1 at t = 1 (bent).
-  Result render = run("render " + scene + size +
-                      " --frames 2 --fps 1 --every --msaa 1 --tonemap linear --out " + path("r"));
-  ASSERT_EQ(render.code, 0) << render.err;
-  Result info = run("info " + scene);
-  ASSERT_EQ(info.code, 0) << info.err;
-  EXPECT_NE(info.out.find("deformed    1 skinned, 0 morphed mesh"), std::string::npos) << info.out;
-  EXPECT_EQ(info.out.find("ignored"), std::string::npos) << info.out;
+  // Render frame 0 at t = 0 (rest), frame 1 at t = 1 (bent).
+  const std::string info = run_both("skinned_bar.gltf", " --time 1 --spp 16",
+                                    " --frames 2 --fps 1 --every --msaa 1 --tonemap linear",
+                                    "deformed    1 skinned, 0 morphed mesh");
+  ASSERT_FALSE(HasFailure());
+  EXPECT_EQ(info.find("ignored"), std::string::npos) << info;
 
   const ddish::metrics::Image rest = ddish::metrics::read_image(dir_ / "r" / "frame_0000.exr");
   EXPECT_FALSE(sky_coverage::on_object(rest.at(58, 48)));
@@ -63,16 +73,9 @@ TEST_F(DeformationCli, SkinnedBarBendsInRenderAndReference) {
 // 1.25) panels; rows 40, 30 and 18 are y = 1.1, 1.35 and 1.65. Unlit: the panels' pixels are
 // exactly their base colour in both renderers.
 TEST_F(DeformationCli, MorphedPanelsInRenderAndReference) {
-  const std::string scene = quote(std::string(DDISH_SOURCE_DIR) + "/scenes/morph_panels.gltf");
-  const std::string size = " --width 128 --height 96";
-  Result ref = run("reference " + scene + size + " --time 0.5 --spp 4 --out " + path("ref"));
-  ASSERT_EQ(ref.code, 0) << ref.err;
-  Result render = run("render " + scene + size +
-                      " --frames 2 --fps 2 --msaa 1 --tonemap linear --grid 2,2,2 --out " + path("r"));
-  ASSERT_EQ(render.code, 0) << render.err;
-  Result info = run("info " + scene);
-  ASSERT_EQ(info.code, 0) << info.err;
-  EXPECT_NE(info.out.find("deformed    0 skinned, 2 morphed meshes"), std::string::npos) << info.out;
+  run_both("morph_panels.gltf", " --time 0.5 --spp 4", " --frames 2 --fps 2 --msaa 1 --tonemap linear --grid 2,2,2",
+           "deformed    0 skinned, 2 morphed meshes");
+  ASSERT_FALSE(HasFailure());
 
   const glm::vec3 panel(0.2f, 0.6f, 0.9f);
   auto is_panel = [&](const glm::vec3& c) { return glm::length(c - panel) < 3e-3f; };
