@@ -7,11 +7,14 @@
 //   raster_views [SCENE] [--views 1,6,12,48] [--size 420x560] [--frames 3] [--msaa 0] [--chunk 0]
 //                [--method per-view|multiview|layered] [--cull on|off|both] [--only-view K]
 //                [--per-chunk] [--shading full|trivial|both] [--anisotropy N]
+//                [--prepass auto|on|off|both]
 //
 // --shading trivial draws the same triangles with the same vertex shader, depth test, MSAA,
 // passes and target but a constant-colour fragment shader (raster/shading.h): the vertex +
 // raster + fill floor of the machine, which the full shading's time is compared against; both
-// times each configuration with either shader (the CSV's shading column). --anisotropy is
+// times each configuration with either shader (the CSV's shading column). --prepass is
+// RendererOptions::depth_prepass for the full shading (auto: where the device has post-depth
+// coverage; both: full shading with and without it, the CSV's prepass column). --anisotropy is
 // RendererOptions::anisotropy (0 automatic: off on lavapipe; 8 reproduces the old default).
 //
 // --chunk K renders a frame of N views as render() calls of at most K views each (summed): on a
@@ -27,8 +30,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <span>
 #include <sstream>
 #include <string>
@@ -50,6 +55,12 @@
 namespace {
 
 using namespace ddish;
+
+double process_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -92,6 +103,7 @@ int main(int argc, char** argv) try {
   std::string shading_choice = "full";
   int anisotropy = 0;
   int only_view = -1;
+  std::string prepass_choice = "auto";
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -109,6 +121,7 @@ int main(int argc, char** argv) try {
     else if (a == "--cull") cull_choice = next();
     else if (a == "--shading") shading_choice = next();
     else if (a == "--anisotropy") anisotropy = std::stoi(next());
+    else if (a == "--prepass") prepass_choice = next();
     else path = a;
   }
   if (!only_method.empty() && !raster::parse_view_method(only_method))
@@ -119,6 +132,12 @@ int main(int argc, char** argv) try {
   if (shading_choice == "both") shadings = {raster::Shading::full, raster::Shading::trivial};
   else if (auto sh = raster::parse_shading(shading_choice)) shadings = {*sh};
   else throw std::invalid_argument("--shading must be full, trivial or both, not " + shading_choice);
+  std::vector<std::optional<bool>> prepasses;
+  if (prepass_choice == "auto") prepasses = {std::nullopt};
+  else if (prepass_choice == "on") prepasses = {true};
+  else if (prepass_choice == "off") prepasses = {false};
+  else if (prepass_choice == "both") prepasses = {true, false};
+  else throw std::invalid_argument("--prepass must be auto, on, off or both, not " + prepass_choice);
   raster::check_anisotropy(anisotropy);
   const scene::Scene s = scene::load_scene(path);
   gpu::Context context({.application_name = "raster_views"});
@@ -128,33 +147,40 @@ int main(int argc, char** argv) try {
               "anisotropy option %d\n", path.c_str(),
               [&] { std::size_t t = 0; for (const auto& m : s.meshes) t += m.triangle_count(); return t; }(),
               width, height, device.info().name.c_str(), frames, anisotropy);
-  std::printf("method,cull,shading,views,passes,frame_ms,ms_per_view,forward_gpu_ms,record_ms,triangles,draws\n");
+  std::printf("method,cull,shading,prepass,views,passes,frame_ms,ms_per_view,forward_gpu_ms,record_ms,"
+              "cpu_ms,triangles,draws\n");
   // Every configuration renders each frame in turn (paired runs): on a shared machine the load
   // changes from minute to minute, and interleaving spreads it evenly over the configurations.
   struct Config {
     raster::ViewMethod method;
     bool cull;
     raster::Shading shading;
+    bool prepass;
     std::unique_ptr<raster::Renderer> renderer;
-    std::vector<double> frame, gpu, record;
+    std::vector<double> frame, gpu, record, cpu;
     raster::FrameStats last;
   };
   std::vector<Config> configs;
   for (raster::ViewMethod method :
        {raster::ViewMethod::per_view, raster::ViewMethod::multiview, raster::ViewMethod::layered})
     for (bool cull : {false, true})
-      for (raster::Shading shading : shadings) {
-        if (!only_method.empty() && only_method != raster::to_string(method)) continue;
-        if (cull_choice != "both" && cull != (cull_choice == "on")) continue;
-        raster::RendererOptions options;
-        options.msaa = msaa;
-        options.view_method = method;
-        options.cull = cull;
-        options.anisotropy = anisotropy;
-        options.shading = shading;
-        configs.push_back({method, cull, shading,
-                           std::make_unique<raster::Renderer>(device, s, volume, options), {}, {}, {}, {}});
-      }
+      for (raster::Shading shading : shadings)
+        for (std::optional<bool> prepass : prepasses) {
+          if (!only_method.empty() && only_method != raster::to_string(method)) continue;
+          if (cull_choice != "both" && cull != (cull_choice == "on")) continue;
+          // The trivial floor never has a prepass: one row of it.
+          if (shading == raster::Shading::trivial && prepass != prepasses.front()) continue;
+          raster::RendererOptions options;
+          options.msaa = msaa;
+          options.view_method = method;
+          options.cull = cull;
+          options.anisotropy = anisotropy;
+          options.shading = shading;
+          options.depth_prepass = prepass;
+          auto renderer = std::make_unique<raster::Renderer>(device, s, volume, options);
+          const bool on = renderer->depth_prepass();
+          configs.push_back({method, cull, shading, on, std::move(renderer), {}, {}, {}, {}, {}});
+        }
   for (int n : counts) {
     std::vector<scene::View> all_views = rig(s, n, width, height);
     if (only_view >= 0) all_views = {all_views.at(static_cast<std::size_t>(only_view))};
@@ -183,10 +209,15 @@ int main(int argc, char** argv) try {
       c.frame.clear();
       c.gpu.clear();
       c.record.clear();
+      c.cpu.clear();
     }
     for (int f = 0; f < frames; ++f)
       for (Config& c : configs) {
+        // Process CPU time (all threads, lavapipe's included): on a shared machine it counts
+        // this frame's work, not the time other processes took.
+        const double cpu0 = process_cpu_ms();
         const raster::FrameStats st = render_frame(*c.renderer);
+        c.cpu.push_back(process_cpu_ms() - cpu0);
         c.last = st;
         c.frame.push_back(st.record_ms + st.execute_ms + st.readback_ms);
         c.gpu.push_back(st.forward_gpu_ms);
@@ -194,10 +225,10 @@ int main(int argc, char** argv) try {
       }
     for (const Config& c : configs) {
       const double ms = median(c.frame);
-      std::printf("%s,%s,%s,%d,%u,%.2f,%.2f,%.2f,%.2f,%llu,%llu\n",
+      std::printf("%s,%s,%s,%s,%d,%u,%.2f,%.2f,%.2f,%.2f,%.2f,%llu,%llu\n",
                   std::string(raster::to_string(c.method)).c_str(), c.cull ? "on" : "off",
-                  std::string(raster::to_string(c.shading)).c_str(), n,
-                  c.last.forward_passes, ms, ms / n, median(c.gpu), median(c.record),
+                  std::string(raster::to_string(c.shading)).c_str(), c.prepass ? "on" : "off", n,
+                  c.last.forward_passes, ms, ms / n, median(c.gpu), median(c.record), median(c.cpu),
                   static_cast<unsigned long long>(c.last.cull.triangles_drawn),
                   static_cast<unsigned long long>(c.last.cull.draws));
     }

@@ -9,19 +9,22 @@
 // the SH probes (probe_lighting.glsl); emission is added; the environment is the clear colour.
 //
 // Not compiled on its own: forward_sh1..4.frag set PROBE_SH_ORDER (a compile-time constant of
-// probe_lighting.glsl) and include this, one SPIR-V per SH order.
+// probe_lighting.glsl) and include this, one SPIR-V per SH order; forward_sh1..4_prepassed.frag
+// also set FORWARD_AFTER_PREPASS, for the shading pass after a depth prepass.
 #include "raster_common.glsl"
-#define MATERIAL_SET 3  // after set 0 (frame), PROBE_SET 1 and BRDF_SET 2
+#include "forward_material.glsl"
 #include "probe_lighting.glsl"
 
-// Variants chosen from scene::SceneFeatures (raster/shader_variant.h): a scene pays only for
-// what it has; the compiler removes the dead branches.
-layout(constant_id = 0) const bool kDirectLights = true;
-layout(constant_id = 1) const bool kShadows = true;
-layout(constant_id = 2) const bool kTextures = true;
-layout(constant_id = 3) const bool kSpecularProbes = true;
-layout(constant_id = 4) const bool kProbes = true;
-layout(constant_id = 5) const bool kEmission = true;
+#ifdef FORWARD_AFTER_PREPASS
+// After the depth prepass (raster/forward_pass.h) the depth test (less or equal, no writes) runs
+// before the shader, and with post-depth coverage gl_SampleMaskIn holds the samples that passed
+// it: a fragment with none is hidden, and its lighting is skipped. That is what makes the
+// prepass pay on lavapipe, whose multisampled path runs the fragment shader of every covered
+// fragment after the early depth test (its single-sample path skips only groups of 8 failed
+// pixels), but which skips an if whose condition is false in all 8 lanes of a pixel group.
+layout(early_fragment_tests) in;
+layout(post_depth_coverage) in;
+#endif
 
 layout(set = 0, binding = 4) uniform sampler2DArrayShadow shadow_maps;
 // E(mu, roughness) nodes: 32 rows (roughness) of 32 values (cbrt(mu)), then 32 E_avg values;
@@ -35,41 +38,12 @@ const float kMinAlpha = 1e-3;
 const float kPi = 3.14159265358979;
 const float kSpecularAaKappa = 0.18;  // the largest alpha^2 the filter adds
 
-layout(set = MATERIAL_SET, binding = 0) uniform MaterialData {
-  vec4 base_color;
-  vec4 emission;   // rgb: emissiveFactor × strength; w: 1 = KHR_materials_unlit
-  vec4 params;     // x: metallic, y: roughness, z: normal scale, w: occlusion strength
-  vec4 alpha;      // x: cutoff, y: 1 = MASK, z: bit set of bound textures, w: 1 = BLEND
-  // Slot s (base colour, metallic-roughness, normal, occlusion, emissive): rows 2s, 2s+1 of its
-  // KHR_texture_transform; row 2s's w is the UV set (raster/gpu_types.h).
-  vec4 uv_rows[10];
-  vec4 dielectric;  // rgb: the dielectric layer's F0, w: its weight (KHR_materials_ior, _specular)
-} material;
-layout(set = MATERIAL_SET, binding = 1) uniform sampler2D base_color_tex;
-layout(set = MATERIAL_SET, binding = 2) uniform sampler2D metallic_roughness_tex;
-layout(set = MATERIAL_SET, binding = 3) uniform sampler2D normal_tex;
-layout(set = MATERIAL_SET, binding = 4) uniform sampler2D occlusion_tex;
-layout(set = MATERIAL_SET, binding = 5) uniform sampler2D emissive_tex;
-
 layout(location = 0) in vec3 in_world;
 layout(location = 1) in vec3 in_normal;
-layout(location = 2) in vec4 in_uv;  // xy: TEXCOORD_0, zw: TEXCOORD_1
 layout(location = 3) in vec4 in_tangent;
 layout(location = 4) flat in uint in_view;  // which views[] entry (forward_vertex.glsl)
-layout(location = 5) in vec4 in_color;      // COLOR_0
 
 layout(location = 0) out vec4 out_color;
-
-bool has_texture(uint bit) { return kTextures && (uint(material.alpha.z) & bit) != 0u; }
-
-// The coordinate texture slot s reads: its UV set, then its KHR_texture_transform (as the path
-// tracer's trace::slot_uv).
-vec2 slot_uv(int s) {
-  const vec4 r0 = material.uv_rows[2 * s];
-  const vec4 r1 = material.uv_rows[2 * s + 1];
-  const vec3 uv = vec3(r0.w > 0.5 ? in_uv.zw : in_uv.xy, 1.0);
-  return vec2(dot(r0.xyz, uv), dot(r1.xyz, uv));
-}
 
 // The table's roughness coordinate: uniform in log(alpha) from kMinAlpha (0) to 1 (1).
 float roughness_coordinate(float roughness) {
@@ -166,48 +140,11 @@ float shadow(LightData light, vec3 p, vec3 n, vec3 wi) {
   return shadow_lookup(layer, offset_p);
 }
 
-void main() {
-  const vec3 dndx = dFdx(normalize(in_normal));
-  const vec3 dndy = dFdy(normalize(in_normal));
-  const float normal_variance = 0.15915494 * (dot(dndx, dndx) + dot(dndy, dndy));
-  // COLOR_0 multiplies the base colour factor and texture (glTF), as in trace/surface.cpp.
-  vec4 base = material.base_color * in_color;
-  if (has_texture(1u)) base *= texture(base_color_tex, slot_uv(0));
-  if (material.alpha.y > 0.5 && base.a < material.alpha.x) discard;
-
-  float metallic = material.params.x;
-  float roughness = material.params.y;
-  if (has_texture(2u)) {
-    const vec4 mr = texture(metallic_roughness_tex, slot_uv(1));
-    roughness *= mr.g;
-    metallic *= mr.b;
-  }
-  metallic = clamp(metallic, 0.0, 1.0);
-  roughness = clamp(roughness, 0.0, 1.0);
-  const vec3 albedo = clamp(base.rgb, 0.0, 1.0);
-  // KHR_materials_unlit: the base colour, no light, as the path tracer shows it
-  // (trace/surface.cpp); single-sided back faces are culled before they get here.
-  // BLEND (the transparent pass, raster/forward_pass.h) writes the base colour's alpha for the
-  // blend unit; every other mode covers what is behind.
-  const float coverage = material.alpha.w > 0.5 ? clamp(base.a, 0.0, 1.0) : 1.0;
-  if (material.emission.w > 0.5) {
-    out_color = vec4(albedo, coverage);
-    return;
-  }
-
-  // Shading normal: double-sided surfaces seen from behind turn to the viewer (single-sided
-  // back faces are culled, as the tracer ends paths there).
-  vec3 n = normalize(in_normal);
-  if (!gl_FrontFacing) n = -n;
-  if (has_texture(4u)) {
-    vec3 t = in_tangent.xyz - n * dot(n, in_tangent.xyz);
-    if (dot(t, t) > 1e-20) {
-      t = normalize(t);
-      const vec3 b = cross(n, t) * (in_tangent.w < 0.0 ? -1.0 : 1.0) * (gl_FrontFacing ? 1.0 : -1.0);
-      const vec3 c = texture(normal_tex, slot_uv(2)).xyz * 2.0 - 1.0;
-      n = normalize(t * c.x * material.params.z + b * c.y * material.params.z + n * c.z);
-    }
-  }
+// Direct light and the probes' light at the fragment, for the shading normal n and the
+// material's values. It reads no material texture (the caller does, for the whole quad: their
+// level comes from derivatives), so it may run under the prepass's visibility branch.
+vec3 lighting(vec3 n, vec3 albedo, float metallic, float roughness, float normal_variance,
+              float occlusion) {
   const vec3 v = normalize(views[in_view].eye.xyz - in_world);
   const float nov = dot(n, v);
   // n.v for the tables, floored as the split sum needs it (a grazing 1e-4 changes no pixel).
@@ -287,9 +224,6 @@ void main() {
   }
 
   if (kProbes) {
-    float occlusion = 1.0;
-    if (has_texture(8u))
-      occlusion = 1.0 + material.params.w * (texture(occlusion_tex, slot_uv(3)).r - 1.0);
     // 1 - E(n.v) of the material's layer: the factor by which the tracer's albedo-scaled
     // diffuse lobe under uniform light differs from Lambert (the cosine-weighted mean of its
     // (1 - E(n.l)) / (1 - E_avg) factor is 1 by construction).
@@ -307,11 +241,60 @@ void main() {
       }
     }
   }
+  return color;
+}
 
-  if (kEmission && gl_FrontFacing) {
-    vec3 e = material.emission.rgb;
-    if (has_texture(16u)) e *= texture(emissive_tex, slot_uv(4)).rgb;
-    color += e;
+void main() {
+  const vec3 dndx = dFdx(normalize(in_normal));
+  const vec3 dndy = dFdy(normalize(in_normal));
+  const float normal_variance = 0.15915494 * (dot(dndx, dndx) + dot(dndy, dndy));
+  vec4 base = material_base_color();
+  if (masked_out(base.a)) discard;
+
+  float metallic = material.params.x;
+  float roughness = material.params.y;
+  if (has_texture(2u)) {
+    const vec4 mr = texture(metallic_roughness_tex, slot_uv(1));
+    roughness *= mr.g;
+    metallic *= mr.b;
   }
+  metallic = clamp(metallic, 0.0, 1.0);
+  roughness = clamp(roughness, 0.0, 1.0);
+  const vec3 albedo = clamp(base.rgb, 0.0, 1.0);
+  // KHR_materials_unlit: the base colour, no light, as the path tracer shows it
+  // (trace/surface.cpp); single-sided back faces are culled before they get here.
+  // BLEND (the transparent pass, raster/forward_pass.h) writes the base colour's alpha for the
+  // blend unit; every other mode covers what is behind.
+  const float coverage = material.alpha.w > 0.5 ? clamp(base.a, 0.0, 1.0) : 1.0;
+  if (material.emission.w > 0.5) {
+    out_color = vec4(albedo, coverage);
+    return;
+  }
+
+  // Shading normal: double-sided surfaces seen from behind turn to the viewer (single-sided
+  // back faces are culled, as the tracer ends paths there).
+  vec3 n = normalize(in_normal);
+  if (!gl_FrontFacing) n = -n;
+  if (has_texture(4u)) {
+    vec3 t = in_tangent.xyz - n * dot(n, in_tangent.xyz);
+    if (dot(t, t) > 1e-20) {
+      t = normalize(t);
+      const vec3 b = cross(n, t) * (in_tangent.w < 0.0 ? -1.0 : 1.0) * (gl_FrontFacing ? 1.0 : -1.0);
+      const vec3 c = texture(normal_tex, slot_uv(2)).xyz * 2.0 - 1.0;
+      n = normalize(t * c.x * material.params.z + b * c.y * material.params.z + n * c.z);
+    }
+  }
+  float occlusion = 1.0;
+  if (kProbes && has_texture(8u))
+    occlusion = 1.0 + material.params.w * (texture(occlusion_tex, slot_uv(3)).r - 1.0);
+  vec3 color = vec3(0.0);
+  if (kEmission && gl_FrontFacing) {
+    color = material.emission.rgb;
+    if (has_texture(16u)) color *= texture(emissive_tex, slot_uv(4)).rgb;
+  }
+#ifdef FORWARD_AFTER_PREPASS
+  if (gl_SampleMaskIn[0] != 0)  // some sample passed the depth test (see the top)
+#endif
+    color += lighting(n, albedo, metallic, roughness, normal_variance, occlusion);
   out_color = vec4(color, coverage);
 }

@@ -4,7 +4,8 @@
 //                    [--frames N] [--every[=N]] [--loop] [--fps F] [--time T] [--out DIR] [--timings FILE]
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
 //                    [--probe-samples N] [--hysteresis A] [--bounces N] [--msaa 1|4]
-//                    [--sample-shading] [--view-batch N] [--anisotropy N] [--tonemap linear|filmic]
+//                    [--sample-shading] [--depth-prepass auto|on|off] [--view-batch N]
+//                    [--anisotropy N] [--tonemap linear|filmic]
 //                    [--no-indirect] [--sky R,G,B] [--exposure EV]
 //                    [--schedule uniform|visibility] [--budget-ms MS] [--max-age N]
 //                    [--blend per-update|per-sample] [--device N] [--seed N]
@@ -120,6 +121,7 @@ struct RenderArgs {
   std::string timings;
   std::uint32_t msaa = 0;
   bool sample_shading = false;
+  std::string depth_prepass = "auto";  // raster::RendererOptions::depth_prepass
   int anisotropy = raster::kAutomaticAnisotropy;
   std::uint32_t view_batch = 0;  // raster::RendererOptions::batch_views
   std::uint32_t max_gpu_memory_mb = 0;  // raster::RendererOptions::memory_limit_bytes, in MiB
@@ -252,6 +254,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   raster::RendererOptions ro;
   ro.msaa = a.msaa;
   ro.sample_shading = a.sample_shading;
+  if (a.depth_prepass != "auto") ro.depth_prepass = a.depth_prepass == "on";
   ro.anisotropy = a.anisotropy;
   ro.batch_views = a.view_batch;
   ro.memory_limit_bytes = std::uint64_t{a.max_gpu_memory_mb} << 20;
@@ -495,6 +498,11 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
   cmd->add_option("--timings", a.timings, "write per-frame stage milliseconds as JSON here");
   cmd->add_option("--msaa", a.msaa, "samples per pixel (default: 4 where supported, else 1)");
   cmd->add_flag("--sample-shading", a.sample_shading, "shade every MSAA sample");
+  cmd->add_option("--depth-prepass", a.depth_prepass,
+                  "draw depth first, then light only the nearest surface of each pixel: auto is on "
+                  "where the device has VK_EXT_post_depth_coverage (lavapipe has it); the same image")
+      ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
   cmd->add_option("--max-gpu-memory", a.max_gpu_memory_mb,
                   "MiB the frame's render target and readback may take (batches shrink to fit; a view "
                   "that cannot fit is an error before the run); 0: what the device has free")

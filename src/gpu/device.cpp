@@ -1,5 +1,7 @@
 #include "gpu/device.h"
 
+#include <algorithm>
+
 #include "gpu/error.h"
 #include "gpu/instance.h"
 
@@ -104,6 +106,13 @@ Device::Device(const Instance& instance, const DeviceOptions& options) : instanc
     enabled.v12.bufferDeviceAddress = VK_TRUE;
     for (const std::string& name : ray_tracing_extensions()) names.push_back(name);
     features_.ray_tracing = true;
+  }
+
+  constexpr const char* kPostDepthCoverage = "VK_EXT_post_depth_coverage";
+  if (device_extension_available(info_.handle, kPostDepthCoverage) &&
+      std::find(names.begin(), names.end(), kPostDepthCoverage) == names.end()) {
+    names.emplace_back(kPostDepthCoverage);
+    features_.post_depth_coverage = true;
   }
 
   std::vector<const char*> extensions;

@@ -61,6 +61,10 @@ struct DeviceFeatures {
   // Ray-tracing pipelines, acceleration structures and buffer device addresses
   // (DeviceOptions::ray_tracing on a device that has them).
   bool ray_tracing = false;
+  // VK_EXT_post_depth_coverage: a fragment shader with early tests may read which samples
+  // passed the depth test (gl_SampleMaskIn), what the forward pass's depth prepass needs
+  // (raster/forward_pass.h). Lavapipe has it.
+  bool post_depth_coverage = false;
 };
 
 class Device {

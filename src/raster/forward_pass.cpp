@@ -23,6 +23,9 @@ void check_desc(const gpu::Device& device, const ForwardPassDesc& desc) {
   if (desc.sample_shading && !device.features().sample_rate_shading)
     throw gpu::GpuError(device.info().name +
                         " lacks the sampleRateShading feature that sample shading needs");
+  if (desc.depth_prepass && !device.features().post_depth_coverage)
+    throw gpu::GpuError(device.info().name +
+                        " lacks VK_EXT_post_depth_coverage that the depth prepass needs");
 }
 
 const gpu::Device& checked(const gpu::Device& device, const ForwardPassDesc& desc) {
@@ -34,7 +37,7 @@ const gpu::Device& checked(const gpu::Device& device, const ForwardPassDesc& des
 // map entries a shader does not use, so the pipeline is otherwise built exactly as for full.
 std::string fragment_shader(const ForwardPassDesc& desc) {
   if (desc.shading == Shading::trivial) return "forward_trivial.frag";
-  return "forward_sh" + std::to_string(desc.sh_order) + ".frag";
+  return "forward_sh" + std::to_string(desc.sh_order) + (desc.depth_prepass ? "_prepassed" : "") + ".frag";
 }
 
 // Instances with a mesh, by material, so that each material's set is bound once per pass;
@@ -88,20 +91,26 @@ ForwardPass::ForwardPass(const gpu::Device& device, const ForwardPassDesc& desc)
     max_multiview_ = std::max(1u, device.info().max_multiview_view_count);
   layered_supported_ = device.features().shader_output_layer;
   reset_view_mask_ = gpu::multiview_defect(device.info()) == gpu::MultiviewDefect::timestamps_after_pass_overrun;
+  if (desc.depth_prepass && desc.shading == Shading::full)
+    depth_masked_.emplace(gpu::ShaderModule::load(device, "forward_depth_masked.frag"));
   pipeline_for(ViewMethod::per_view, 1);
 }
 
 void ForwardPass::prepare(ViewMethod method) {
-  pipeline_for(method, method == ViewMethod::multiview ? max_multiview_ : 1u);
+  const std::uint32_t count = method == ViewMethod::multiview ? max_multiview_ : 1u;
+  pipeline_for(method, count);
+  if (depth_masked_) {
+    pipeline_for(method, count, kDepth);
+    pipeline_for(method, count, kDepthMasked);
+  }
 }
 
-VkPipeline ForwardPass::pipeline_for(ViewMethod method, std::uint32_t view_count, bool blend) {
-  const int b = blend ? 1 : 0;
-  if (method == ViewMethod::per_view && pipeline_[b]) return pipeline_[b].get();
-  if (method == ViewMethod::layered && layered_pipeline_[b]) return layered_pipeline_[b].get();
+VkPipeline ForwardPass::pipeline_for(ViewMethod method, std::uint32_t view_count, Kind kind) {
+  if (method == ViewMethod::per_view && pipeline_[kind]) return pipeline_[kind].get();
+  if (method == ViewMethod::layered && layered_pipeline_[kind]) return layered_pipeline_[kind].get();
   const std::uint32_t mask = method == ViewMethod::multiview ? (1u << view_count) - 1u : 0u;
   if (method == ViewMethod::multiview) {
-    auto it = multiview_pipelines_.find({mask, blend});
+    auto it = multiview_pipelines_.find({mask, kind});
     if (it != multiview_pipelines_.end()) return it->second.get();
   }
   if (method == ViewMethod::layered && !layered_vertex_) {
@@ -113,20 +122,26 @@ VkPipeline ForwardPass::pipeline_for(ViewMethod method, std::uint32_t view_count
   GraphicsPipelineDesc p;
   p.layout = layout_.get();
   p.vertex = method == ViewMethod::layered ? layered_vertex_->handle() : vertex_.handle();
-  p.fragment = fragment_.handle();
+  // The opaque prepass has no fragment stage; the masked one only discards.
+  p.fragment = kind == kDepth ? VK_NULL_HANDLE
+               : kind == kDepthMasked ? depth_masked_->handle()
+                                      : fragment_.handle();
   p.fragment_constants = desc_.variant.constants();
   p.color_format = RenderTarget::kColorFormat;
   p.depth_format = RenderTarget::kDepthFormat;
   p.samples = static_cast<VkSampleCountFlagBits>(desc_.samples);
   p.sample_shading = desc_.sample_shading;
   p.view_mask = mask;
-  p.alpha_blend = blend;
+  p.alpha_blend = kind == kBlend;
+  // After a prepass the shading finds the depth made and leaves it.
+  p.depth_write = !desc_.depth_prepass || kind == kDepth || kind == kDepthMasked;
+  p.color_write = kind != kDepth && kind != kDepthMasked;
   Pipeline made = make_graphics_pipeline(device_, p);
   const VkPipeline handle = made.get();
   if (method == ViewMethod::multiview)
-    multiview_pipelines_.emplace(std::make_pair(mask, blend), std::move(made));
-  else if (method == ViewMethod::layered) layered_pipeline_[b] = std::move(made);
-  else pipeline_[b] = std::move(made);
+    multiview_pipelines_.emplace(std::make_pair(mask, int(kind)), std::move(made));
+  else if (method == ViewMethod::layered) layered_pipeline_[kind] = std::move(made);
+  else pipeline_[kind] = std::move(made);
   return handle;
 }
 
@@ -181,14 +196,24 @@ void ForwardPass::record_view_mask_reset(VkCommandBuffer cmd, const RenderTarget
 
 void ForwardPass::draw_items(VkCommandBuffer cmd, const scene::Scene& scene,
                              const MaterialTextures& materials, std::span<const DrawItem> items,
-                             std::uint32_t view_index, std::uint32_t first_instance) const {
+                             std::uint32_t view_index, std::uint32_t first_instance,
+                             std::array<VkPipeline, 2> depth) const {
   int bound_material = -2;  // no material index is -2
   std::uint32_t pushed_instance = ~0u;
+  VkPipeline bound_pipeline = VK_NULL_HANDLE;
   for (const DrawItem& item : items) {
     const scene::Instance& inst = scene.instances[item.instance];
     const scene::Mesh& mesh = scene.meshes[static_cast<std::size_t>(inst.mesh)];
     if (mesh.material != bound_material) {
       bound_material = mesh.material;
+      if (depth[0] != VK_NULL_HANDLE) {
+        const bool masked = scene.material_of(mesh).alpha_mode == scene::AlphaMode::Mask;
+        const VkPipeline pipeline = depth[masked ? 1 : 0];
+        if (pipeline != bound_pipeline) {
+          vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+          bound_pipeline = pipeline;
+        }
+      }
       const VkDescriptorSet set = materials.set(mesh.material);
       vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), kMaterialSet, 1,
                               &set, 0, nullptr);
@@ -208,6 +233,18 @@ void ForwardPass::draw_items(VkCommandBuffer cmd, const scene::Scene& scene,
     }
     vkCmdDrawIndexed(cmd, item.index_count, 1, item.first_index, item.vertex_offset, first_instance);
   }
+}
+
+void ForwardPass::draw_opaque(VkCommandBuffer cmd, const scene::Scene& scene,
+                              const MaterialTextures& materials, ViewMethod method,
+                              std::uint32_t view_count, std::uint32_t view_index,
+                              std::uint32_t first_instance) {
+  if (depth_masked_) {
+    draw_items(cmd, scene, materials, items_, view_index, first_instance,
+               {pipeline_for(method, view_count, kDepth), pipeline_for(method, view_count, kDepthMasked)});
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_for(method, view_count));
+  }
+  draw_items(cmd, scene, materials, items_, view_index, first_instance);
 }
 
 void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const GpuMeshes& meshes,
@@ -245,8 +282,8 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
         begin_pass(cmd, target, target.color_view(v), target.depth_view(v), 1, 0, clear,
                    pipeline_for(ViewMethod::per_view, 1), sets);
         meshes.bind(cmd);
-        draw_items(cmd, scene, materials, items_, v, 0);
-        record_blended(v, 1, blended.empty() ? VK_NULL_HANDLE : pipeline_for(ViewMethod::per_view, 1, true),
+        draw_opaque(cmd, scene, materials, ViewMethod::per_view, 1, v, 0);
+        record_blended(v, 1, blended.empty() ? VK_NULL_HANDLE : pipeline_for(ViewMethod::per_view, 1, kBlend),
                        v, 0);
         vkCmdEndRendering(cmd);
         ++passes_;
@@ -264,9 +301,9 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
                    blocks ? target.depth_block_view(b) : target.depth_view(first), 1, (1u << count) - 1u,
                    clear, pipeline_for(ViewMethod::multiview, count), sets);
         meshes.bind(cmd);
-        draw_items(cmd, scene, materials, items_, first, 0);
+        draw_opaque(cmd, scene, materials, ViewMethod::multiview, count, first, 0);
         record_blended(first, count,
-                       blended.empty() ? VK_NULL_HANDLE : pipeline_for(ViewMethod::multiview, count, true),
+                       blended.empty() ? VK_NULL_HANDLE : pipeline_for(ViewMethod::multiview, count, kBlend),
                        first, 0);
         vkCmdEndRendering(cmd);
         ++passes_;
@@ -283,11 +320,11 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
       for (std::uint32_t v = 0; v < n; ++v) {
         items_.clear();
         build_draws(scene, meshes, order, pass_views(v, 1), views.cull, items_, stats_);
-        draw_items(cmd, scene, materials, items_, 0, v);
+        draw_opaque(cmd, scene, materials, ViewMethod::layered, n, 0, v);
       }
       // Then each view's transparent draws, sorted from its own eye (layers are independent).
       if (!blended.empty()) {
-        const VkPipeline blend_pipeline = pipeline_for(ViewMethod::layered, n, true);
+        const VkPipeline blend_pipeline = pipeline_for(ViewMethod::layered, n, kBlend);
         for (std::uint32_t v = 0; v < n; ++v) record_blended(v, 1, blend_pipeline, 0, v);
       }
       vkCmdEndRendering(cmd);

@@ -8,6 +8,14 @@
 // what was drawn, and raster/environment_background.h composites the map behind it.
 // The views go into a layered target, one layer per view, recorded as ViewMethod says, each
 // pass drawing only the clusters its views can see when culling is on (raster/draw_list.h).
+//
+// With a depth prepass (ForwardPassDesc::depth_prepass), each pass first draws its opaque and
+// masked instances into depth alone (masked ones discarding as the shading does,
+// forward_depth_masked.frag), then shades them with the depth test before the shader and no
+// depth writes: a fragment none of whose samples is the nearest skips its lighting
+// (forward_sh*_prepassed.frag, post-depth coverage). Each visible surface is then lit about
+// once, not once per layer of overdraw; that matters most on lavapipe at MSAA 4, which runs the
+// fragment shader of every covered fragment, hidden or not.
 #pragma once
 
 #include <array>
@@ -52,6 +60,8 @@ struct ForwardPassDesc {
   bool sample_shading = false;  // needs DeviceFeatures::sample_rate_shading
   ShaderVariant variant;
   Shading shading = Shading::full;  // trivial: forward_trivial.frag instead of forward_sh<order>
+  // Full shading after a depth prepass (see above); needs DeviceFeatures::post_depth_coverage.
+  bool depth_prepass = false;
 };
 
 // What one frame's forward pass draws: the views (their matrices also live in the frame set,
@@ -89,15 +99,24 @@ class ForwardPass {
   const ForwardPassDesc& desc() const { return desc_; }
 
  private:
-  // blend: the transparent pass's pipeline (GraphicsPipelineDesc::alpha_blend).
-  VkPipeline pipeline_for(ViewMethod method, std::uint32_t view_count, bool blend = false);
+  // What a pipeline draws: the shading of opaque and masked instances, the transparent pass
+  // (GraphicsPipelineDesc::alpha_blend), the depth prepass of opaque and of masked instances.
+  enum Kind : int { kShade = 0, kBlend = 1, kDepth = 2, kDepthMasked = 3, kKinds = 4 };
+  VkPipeline pipeline_for(ViewMethod method, std::uint32_t view_count, Kind kind = kShade);
   void begin_pass(VkCommandBuffer cmd, const RenderTarget& target, VkImageView color,
                   VkImageView depth, std::uint32_t layers, std::uint32_t view_mask,
                   const glm::vec4& clear, VkPipeline pipeline,
                   std::span<const VkDescriptorSet> sets) const;
+  // depth: the prepass's {opaque, masked} pipelines, bound as the items' materials need them;
+  // empty: whatever pipeline is bound draws them all.
   void draw_items(VkCommandBuffer cmd, const scene::Scene& scene, const MaterialTextures& materials,
                   std::span<const DrawItem> items, std::uint32_t view_index,
-                  std::uint32_t first_instance) const;
+                  std::uint32_t first_instance,
+                  std::array<VkPipeline, 2> depth = {VK_NULL_HANDLE, VK_NULL_HANDLE}) const;
+  // The opaque and masked items: the depth prepass (when on), then the shading.
+  void draw_opaque(VkCommandBuffer cmd, const scene::Scene& scene, const MaterialTextures& materials,
+                   ViewMethod method, std::uint32_t view_count, std::uint32_t view_index,
+                   std::uint32_t first_instance);
   // An empty one-view pass that clears a driver's leftover view mask (gpu/driver_quirks.h:
   // lavapipe 25 overruns the next timestamp query pool otherwise).
   void record_view_mask_reset(VkCommandBuffer cmd, const RenderTarget& target) const;
@@ -106,15 +125,16 @@ class ForwardPass {
   ForwardPassDesc desc_;
   PipelineLayout layout_;
   gpu::ShaderModule vertex_, fragment_;
+  std::optional<gpu::ShaderModule> depth_masked_;  // with the depth prepass
   std::optional<gpu::ShaderModule> layered_vertex_;  // loaded on first use
   std::uint32_t max_multiview_ = 1;
   bool layered_supported_ = false;
   bool reset_view_mask_ = false;  // after multiview passes: record_view_mask_reset
-  // [0]: opaque and masked draws, [1]: the transparent pass (made when a scene has BLEND).
-  Pipeline pipeline_[2];          // per-view passes
-  Pipeline layered_pipeline_[2];  // made on first use
-  // By (view mask, blend), made on first use.
-  std::map<std::pair<std::uint32_t, bool>, Pipeline> multiview_pipelines_;
+  // By Kind, each made on first use (the transparent pass's when a scene has BLEND).
+  Pipeline pipeline_[kKinds];          // per-view passes
+  Pipeline layered_pipeline_[kKinds];
+  // By (view mask, kind).
+  std::map<std::pair<std::uint32_t, int>, Pipeline> multiview_pipelines_;
   std::uint32_t passes_ = 0;
   CullStats stats_;
   std::vector<DrawItem> items_;        // reused from pass to pass

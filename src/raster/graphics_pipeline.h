@@ -36,6 +36,10 @@ struct GraphicsPipelineDesc {
   // Transparent (glTF BLEND) draws: colour = src * alpha + dst * (1 - alpha), depth tested but
   // not written, so sorted layers behind one another all blend.
   bool alpha_blend = false;
+  // false: depth tested but not written (the shading pass after a depth prepass).
+  bool depth_write = true;
+  // false: no colour written (a depth prepass drawn in the colour pass).
+  bool color_write = true;
 };
 
 Pipeline make_graphics_pipeline(const gpu::Device& device, const GraphicsPipelineDesc& desc);

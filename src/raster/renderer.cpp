@@ -50,7 +50,8 @@ std::uint32_t shadow_capacity(const scene::Scene& scene, const ShadowSettings& s
   return n;
 }
 
-ForwardPassDesc forward_desc(const RendererOptions& o, const scene::RenderPlan& plan,
+ForwardPassDesc forward_desc(const gpu::Device& device, const RendererOptions& o,
+                             const scene::RenderPlan& plan,
                              std::array<VkDescriptorSetLayout, 4> layouts, std::uint32_t samples,
                              int volume_order) {
   ForwardPassDesc d;
@@ -61,6 +62,9 @@ ForwardPassDesc forward_desc(const RendererOptions& o, const scene::RenderPlan& 
   d.variant = variant_for(plan);
   d.variant.probes = o.probes;
   d.shading = o.shading;
+  // The trivial floor stays one pass: it is what the full shading is measured against.
+  d.depth_prepass = o.shading == Shading::full &&
+                    o.depth_prepass.value_or(device.features().post_depth_coverage);
   return d;
 }
 
@@ -93,7 +97,7 @@ Renderer::Renderer(gpu::Device& device, const scene::Scene& scene, const probes:
   (void)probe_target;
   frame_.bind_shadow_maps(shadows_.view(), shadows_.sampler());
   forward_ = std::make_unique<ForwardPass>(
-      device, forward_desc(options, plan_,
+      device, forward_desc(device, options, plan_,
                            {frame_.layout(), probe_textures_.layout(), brdf_tables_.layout(),
                             materials_.layout()},
                            samples_, volume.sh_order()));

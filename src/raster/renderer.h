@@ -72,6 +72,9 @@ struct RendererOptions {
   int anisotropy = 0;
   // full: the renderer's shading; trivial: a constant colour, the fill-rate floor (raster/shading.h).
   Shading shading = Shading::full;
+  // Full shading after a depth prepass (raster/forward_pass.h): unset, wherever the device
+  // has VK_EXT_post_depth_coverage; true there only (GpuError elsewhere); false, never.
+  std::optional<bool> depth_prepass;
   // Views drawn per submission into one reused target: 0 picks the most whose target and
   // readback fit kBatchTargetBytes (at least one; a multiple of a multiview pass). The
   // device memory of a frame then stops growing with the views (48 views of 420x560 at
@@ -143,6 +146,8 @@ class Renderer {
   // The material sampler's maxAnisotropy on this device (RendererOptions::anisotropy); 1: off.
   float anisotropy() const { return materials_.max_anisotropy(); }
   int sh_order() const { return forward_->desc().sh_order; }
+  // Whether the forward pass shades after a depth prepass (RendererOptions::depth_prepass).
+  bool depth_prepass() const { return forward_->desc().depth_prepass; }
 
  private:
   void ensure_target(std::uint32_t width, std::uint32_t height, std::uint32_t views);
