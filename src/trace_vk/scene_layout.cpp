@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "scene/scene.h"
+#include "trace/environment_light.h"
 #include "trace/ggx.h"
 #include "trace/specular_albedo.h"
 #include "trace/surface.h"
@@ -42,7 +43,6 @@ GpuTextureSlot slot_of(const scene::TextureSlot& slot, std::size_t texture_count
 }  // namespace
 
 std::string unsupported_features(const scene::Scene& s) {
-  if (s.environment_map) return "an environment map (--environment)";
   // Their posed vertices change every frame; the acceleration structures only move instances.
   if (!s.deformed.empty()) return "skinned or morphed meshes";
   return {};
@@ -157,6 +157,26 @@ SceneLayout SceneLayout::build(const scene::Scene& s) {
         }
     }
     L.textures.push_back(g);
+  }
+
+  if (s.environment_map) {
+    // A black map lights nothing: it stays width 0, as the CPU tracer then samples nothing and
+    // adds zero radiance.
+    const trace::EnvironmentLight light(s.environment_map);
+    const trace::EnvironmentTables t = light.tables();
+    if (t.total > 0.0) {
+      const scene::EnvironmentMap& map = light.map();
+      L.environment = {static_cast<std::uint32_t>(t.width), static_cast<std::uint32_t>(t.height),
+                       std::cos(map.rotation), std::sin(map.rotation)};
+      const double texels = double(t.width) * double(t.height);
+      for (int y = 0; y < t.height; ++y)
+        for (int x = 0; x < t.width; ++x) {
+          const std::size_t k = std::size_t(y) * std::size_t(t.width) + std::size_t(x);
+          L.environment_texels.push_back(glm::vec4(map.texel(x, y), float(t.weights[k] * texels / t.total)));
+        }
+      L.environment_cdf.assign(t.row_cdf.begin(), t.row_cdf.end());
+      L.environment_cdf.insert(L.environment_cdf.end(), t.column_cdf.begin(), t.column_cdf.end());
+    }
   }
 
   L.place(s);

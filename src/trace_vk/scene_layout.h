@@ -106,11 +106,20 @@ struct GpuLight {
   glm::vec4 spot{0.0f};
 };
 
+// The environment map's size and rotation (trace_environment.glsl's EnvironmentParams; width 0:
+// no map, or a black one).
+struct GpuEnvironment {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  float cos_rotation = 1.0f;
+  float sin_rotation = 0.0f;
+};
+
 // The albedo table's size: trace::DielectricSpecularAlbedo's 32 x 32 nodes.
 inline constexpr int kAlbedoNodes = 32;
 
-// What the GPU tracer does not do yet, for this scene ("" when it can trace it): environment
-// maps, skinned or morphed meshes. Callers refuse the scene with it.
+// What the GPU tracer does not do yet, for this scene ("" when it can trace it): skinned or
+// morphed meshes. Callers refuse the scene with it.
 std::string unsupported_features(const scene::Scene& scene);
 
 // The triangles of `mesh` (indices, 3 per triangle) in Morton order of their centroids.
@@ -130,6 +139,12 @@ struct SceneLayout {
   std::vector<GpuTexture> textures;
   std::vector<GpuTextureLevel> texture_levels;
   std::vector<std::uint32_t> texels;
+  // The environment map as trace::EnvironmentLight samples it (its own tables, in floats): the
+  // texels' radiance with, in w, each texel's density in (u, v) (weight x width x height /
+  // total); the row CDF (height + 1) followed by every row's column CDF (width + 1 each).
+  GpuEnvironment environment;
+  std::vector<glm::vec4> environment_texels;
+  std::vector<float> environment_cdf;
 
   // The whole layout of a posed scene.
   static SceneLayout build(const scene::Scene& scene);

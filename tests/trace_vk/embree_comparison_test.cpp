@@ -2,8 +2,9 @@
 // lavapipe), statistically over every probe of a small grid (statistical_comparison.h): the
 // Cornell box (an emissive quad, no sky: diffuse interreflection, next-event estimation of
 // emissive triangles with MIS), the sphere over a ground under a point light and a sky, the
-// Cornell box with a glossy metal block under a spot light, the animated Cornell box after it
-// moved, and a textured scene with an alpha-masked and an alpha-blended panel (textures through
+// Cornell box with a glossy metal block under a spot light, the sphere over a glossy ground lit
+// by an HDR environment map (importance-sampled next-event estimation with MIS, the map's
+// rotation and intensity), the animated Cornell box after it moved, and a textured scene with an alpha-masked and an alpha-blended panel (textures through
 // KHR_texture_transform, mip levels from the ray cones, vertex colours, any-hit shaders).
 //
 // Thresholds: with R = 16 updates per tracer each z is close to Student's t with 30 degrees of
@@ -28,6 +29,7 @@
 #include "statistical_comparison.h"
 #include "trace/tracer.h"
 #include "trace_vk/vk_probe_tracer.h"
+#include "test_environment.h"
 #include "vk_test.h"
 
 namespace ddish::trace_vk::test {
@@ -100,6 +102,14 @@ TEST_F(VkVersusEmbree, SphereOverGroundUnderPointLightAndSky) {
 TEST_F(VkVersusEmbree, GlossyMetalUnderSpotLight) {
   const scene::Scene s = bundled("cornell_spot.gltf");
   const Comparison c = run(s, inner_grid(s.bounds(), {3, 3, 3}, 0.1f), 96, 6);
+  expect_same(c, 27 * 9 * 3 / 2);
+}
+
+TEST_F(VkVersusEmbree, SphereOverGlossyGroundUnderAnEnvironmentMap) {
+  scene::Scene s = raster::test::sphere_over_ground(0.35f);
+  s.environment_map = test_environment_map();
+  const probes::ProbeGrid grid(scene::Aabb{{-1.5f, 0.2f, -1.5f}, {1.5f, 1.6f, 1.5f}}, {3, 3, 3});
+  const Comparison c = run(s, grid, 96, 6);
   expect_same(c, 27 * 9 * 3 / 2);
 }
 
