@@ -9,7 +9,6 @@
 
 #include <cstdint>
 #include <span>
-#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -118,10 +117,6 @@ struct GpuEnvironment {
 // The albedo table's size: trace::DielectricSpecularAlbedo's 32 x 32 nodes.
 inline constexpr int kAlbedoNodes = 32;
 
-// What the GPU tracer does not do yet, for this scene ("" when it can trace it): skinned or
-// morphed meshes. Callers refuse the scene with it.
-std::string unsupported_features(const scene::Scene& scene);
-
 // The triangles of `mesh` (indices, 3 per triangle) in Morton order of their centroids.
 std::vector<std::uint32_t> spatially_sorted_indices(const scene::Mesh& mesh);
 
@@ -129,6 +124,10 @@ struct SceneLayout {
   std::vector<GpuVertex> vertices;
   std::vector<std::uint32_t> indices;  // per mesh, sorted, relative to its first vertex
   std::vector<GpuMesh> meshes;
+  // Per mesh: whether Scene::pose deforms it (skin, morph targets), and the pose_version its
+  // vertices above are of.
+  std::vector<bool> deformed;
+  std::vector<std::uint64_t> pose_versions;
   std::vector<GpuMaterial> materials;  // one per mesh
   std::vector<GpuInstance> instances;
   std::vector<GpuEmissive> emissive;   // the emissive instances' triangles, in index order
@@ -148,7 +147,11 @@ struct SceneLayout {
 
   // The whole layout of a posed scene.
   static SceneLayout build(const scene::Scene& scene);
-  // Re-places instances, emissive triangles and lights after scene.pose (meshes stay).
+  // Rewrites the vertices of the deformed meshes whose pose changed since (their pose_version),
+  // and returns those meshes (their triangles and order stay: only positions, normals and
+  // tangents move). Then place() follows the rest.
+  std::vector<std::uint32_t> repose(const scene::Scene& scene);
+  // Re-places instances, emissive triangles and lights after scene.pose.
   void place(const scene::Scene& scene);
 };
 

@@ -108,7 +108,7 @@ struct VkProbeTracer::Impl {
     environment_cdf = make_buffer(d, runner, layout.environment_cdf, kStorage);
     place_buffers();
     acceleration = std::make_unique<SceneAcceleration>(d, rt, runner, vertices, indices, layout.meshes,
-                                                       layout.materials, layout.instances);
+                                                       layout.materials, layout.instances, layout.deformed);
     make_rt_pipeline();
     project = std::make_unique<gpu::ComputePipeline>(d, gpu::ShaderModule::load(d, "probe_project.comp"),
                                                      gpu::ComputePipelineDesc{.storage_buffers = 6,
@@ -311,8 +311,6 @@ VkProbeTracer::VkProbeTracer(const gpu::Device& device, const scene::Scene& scen
                              const probes::UpdateOptions& options)
     : options_(options) {
   probes::check_update_options(options);
-  if (const std::string missing = unsupported_features(scene); !missing.empty())
-    throw std::invalid_argument("the Vulkan tracer does not support " + missing + " yet; use --tracer embree");
   impl_ = std::make_unique<Impl>(device, scene, path);
 }
 
@@ -325,9 +323,20 @@ void VkProbeTracer::set_options(const probes::UpdateOptions& options) {
 
 void VkProbeTracer::scene_posed(const scene::Scene& scene, std::span<const int> moved) {
   Impl& im = *impl_;
+  // Deformed meshes that changed pose: their vertices again (in place: the structures keep
+  // the buffer's addresses), and their bottom levels.
+  const std::vector<std::uint32_t> reshaped = im.layout.repose(scene);
+  for (std::uint32_t m : reshaped) {
+    const GpuMesh& mesh = im.layout.meshes[m];
+    const std::size_t end = m + 1 < im.layout.meshes.size() ? im.layout.meshes[m + 1].first_vertex
+                                                             : im.layout.vertices.size();
+    gpu::upload(im.device, im.runner, im.vertices, im.layout.vertices.data() + mesh.first_vertex,
+                (end - mesh.first_vertex) * sizeof(GpuVertex), VkDeviceSize(mesh.first_vertex) * sizeof(GpuVertex));
+  }
+  if (!reshaped.empty()) im.acceleration->refit(im.runner, reshaped);
   im.layout.place(scene);
   im.place_buffers();
-  if (!moved.empty()) im.acceleration->update(im.runner, im.layout.instances);
+  if (!moved.empty() || !reshaped.empty()) im.acceleration->update(im.runner, im.layout.instances);
 }
 
 const gpu::Buffer& VkProbeTracer::coefficient_buffer() const {
