@@ -3,8 +3,10 @@
 // spatially sorted order (Morton order of their centroids: lavapipe's BVH keeps the input order,
 // and an unsorted mesh traces orders of magnitude slower, DESIGN.md), one material per mesh,
 // instances, the emissive triangles in world space with their power CDF (trace::LightSet's
-// choice, by area x luminance), the punctual lights, and the BSDF's albedo table. Building it
-// needs no device, so it is tested on its own.
+// choice, by area x luminance), the punctual lights, the BSDF's albedo table, and the
+// environment map with trace::EnvironmentLight's sampling tables. Deformed meshes' vertices are
+// rewritten when their pose changes. Building it needs no device, so it is tested on its own
+// (tests/trace_vk/scene_layout_test.cpp).
 #pragma once
 
 #include <cstdint>
