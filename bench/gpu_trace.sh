@@ -5,7 +5,8 @@
 # same probes (bench/trace_vk_rate: median of 4 timed updates after a classifying one, CSV).
 # The paper's figure: 1.68 ms for 1024 probes x 256 paths on an RTX 3090; goal <= 2 ms.
 # Usage: bash bench/gpu_trace.sh [BUILD_DIR] (default build-gpu/). DDISH_SCENES (default
-# ../shared/scenes beside the checkout) holds the scenes; --device N (DEVICE=N) picks the GPU.
+# ../shared/scenes beside the checkout) holds the scenes; --device N (DEVICE=N) picks the GPU;
+# ENVIRONMENT=FILE.exr|.hdr adds a run of each scene lit by that map (importance-sampled).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build-gpu}
@@ -17,6 +18,9 @@ DEV=${DEVICE:+--device $DEVICE}
 run() {  # scene grid
   if [ ! -f "$SCENES/$1" ]; then echo "skipped: $SCENES/$1 not found" >&2; return 0; fi
   "$B/bench/trace_vk_rate" "$SCENES/$1" --grid "$2" --samples 256 --updates 5 $DEV
+  if [ -n "${ENVIRONMENT:-}" ]; then
+    "$B/bench/trace_vk_rate" "$SCENES/$1" --grid "$2" --samples 256 --updates 5 $DEV --environment "$ENVIRONMENT"
+  fi
 }
 run sponza/Sponza.gltf 16,8,8
 run breakfast_room/BreakfastRoom.gltf 8,4,8

@@ -4,9 +4,13 @@
 //
 //   trace_vk_rate SCENE [--grid X,Y,Z] [--samples N] [--bounces N] [--updates K] [--device N]
 //                       [--tracers both|vulkan|embree]
+//                       [--environment FILE.exr|.hdr [--environment-rotation DEG]
+//                        [--environment-intensity K]]
 //
-// Prints one CSV row (header first) with each tracer's median update time, rays per update and
-// Mrays/s, and the Vulkan device. The two tracers cast different rays (other random numbers), so
+// --environment lights the scene with an equirectangular map in place of its uniform sky, as
+// `ddish probes --environment` does (both tracers importance-sample it: one more shadow ray per
+// bounce). Prints one CSV row (header first) with each tracer's median update time, rays per
+// update and Mrays/s, the Vulkan device and the map ("-": none). The two tracers cast different rays (other random numbers), so
 // rays per update differ by the Monte Carlo noise of path lengths. Exit 2 when the device has
 // no ray-tracing pipelines (with --tracers embree it is not opened).
 #include <algorithm>
@@ -20,8 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "gpu/context.h"
 #include "bench_grid.h"
+#include "gpu/context.h"
+#include "metrics/image_io.h"
 #include "probes/probe_grid.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
@@ -62,7 +67,8 @@ Rate measure(const probes::ProbeUpdater& updater, const probes::ProbeGrid& grid,
 }  // namespace
 
 int main(int argc, char** argv) try {
-  std::string path, grid, tracers = "both";
+  std::string path, grid, tracers = "both", environment;
+  float environment_rotation = 0.0f, environment_intensity = 1.0f;
   int samples = 256, bounces = 15, updates = 4;  // bounces: ddish render's default
   std::optional<std::uint32_t> device;
   for (int i = 1; i < argc; ++i) {
@@ -77,17 +83,29 @@ int main(int argc, char** argv) try {
     else if (a == "--updates") updates = std::stoi(next());
     else if (a == "--device") device = static_cast<std::uint32_t>(std::stoul(next()));
     else if (a == "--tracers") tracers = next();
+    else if (a == "--environment") environment = next();
+    else if (a == "--environment-rotation") environment_rotation = std::stof(next());
+    else if (a == "--environment-intensity") environment_intensity = std::stof(next());
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else path = a;
   }
   if (path.empty())
     throw std::invalid_argument("usage: trace_vk_rate SCENE [--grid X,Y,Z] [--samples N] [--bounces N] "
-                                "[--updates K] [--device N] [--tracers both|vulkan|embree]");
+                                "[--updates K] [--device N] [--tracers both|vulkan|embree] [--environment FILE "
+                                "[--environment-rotation DEG] [--environment-intensity K]]");
   if (samples < 1 || bounces < 0 || updates < 2) throw std::invalid_argument("need --samples >= 1, --bounces >= 0, --updates >= 2");
   if (tracers != "both" && tracers != "vulkan" && tracers != "embree")
     throw std::invalid_argument("--tracers is both, vulkan or embree, got '" + tracers + "'");
 
-  const scene::Scene s = scene::load_scene(path);
+  scene::Scene s = scene::load_scene(path);
+  if (!environment.empty()) {
+    // In place of the uniform sky, as app/lighting_options.h's apply_lighting does.
+    metrics::Image image = metrics::read_image(environment);
+    s.environment_map = std::make_shared<const scene::EnvironmentMap>(
+        scene::make_environment_map(image.width(), image.height(), std::move(image.pixels()), environment_rotation,
+                                    environment_intensity, environment));
+    s.sidecar.environment = glm::vec3(0.0f);
+  }
   const probes::ProbeGrid grid_used = bench::place_grid(s, grid);
   trace::PathOptions path_options;
   path_options.max_bounces = bounces;
@@ -113,10 +131,11 @@ int main(int argc, char** argv) try {
     vulkan = measure(tracer, grid_used, updates);
   }
   std::printf("scene,triangles,probes,active,samples,bounces,embree_ms,embree_rays,embree_mrays_s,"
-              "vulkan_ms,vulkan_rays,vulkan_mrays_s,vulkan_device\n");
-  std::printf("%s,%zu,%u,%u,%d,%d,%.3f,%.0f,%.3f,%.3f,%.0f,%.3f,\"%s\"\n", s.path.c_str(), s.triangle_count(),
+              "vulkan_ms,vulkan_rays,vulkan_mrays_s,vulkan_device,environment\n");
+  std::printf("%s,%zu,%u,%u,%d,%d,%.3f,%.0f,%.3f,%.3f,%.0f,%.3f,\"%s\",\"%s\"\n", s.path.c_str(), s.triangle_count(),
               grid_used.probe_count(), std::max(embree.probes, vulkan.probes), samples, bounces, embree.ms,
-              embree.rays, embree.mrays_s, vulkan.ms, vulkan.rays, vulkan.mrays_s, device_name.c_str());
+              embree.rays, embree.mrays_s, vulkan.ms, vulkan.rays, vulkan.mrays_s, device_name.c_str(),
+              environment.empty() ? "-" : environment.c_str());
   return 0;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "trace_vk_rate: %s\n", e.what());

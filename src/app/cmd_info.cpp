@@ -241,9 +241,9 @@ Action make_info(CLI::App& root) {
     scene::RenderPlan plan = scene::make_plan(f);
     add_empty_probes(s, plan);
     if (opts->json)
-      fmt::print("{}\n", to_json(s, f, plan, env, seconds, auto_tracer_line(s)).dump(2));
+      fmt::print("{}\n", to_json(s, f, plan, env, seconds, auto_tracer_line()).dump(2));
     else
-      print_text(s, f, plan, env, seconds, auto_tracer_line(s));
+      print_text(s, f, plan, env, seconds, auto_tracer_line());
     return 0;
   };
 }

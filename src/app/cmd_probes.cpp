@@ -62,7 +62,7 @@ int run_probes(const ProbesArgs& a) {
   Placement placement = place_probes(a.probe, s);
   const probes::ProbeGrid& grid = placement.grid;
 
-  const TracerDecision decision = choose_tracer(a.tracer, std::nullopt, s);
+  const TracerDecision decision = choose_tracer(a.tracer, std::nullopt);
   t0 = std::chrono::steady_clock::now();
   trace::PathOptions path_options;
   path_options.max_bounces = a.probe.bounces;

@@ -211,7 +211,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   const bool remote = !a.connect.empty();
   std::optional<TracerDecision> tracer;
   if (!remote) {
-    tracer = choose_tracer(a.tracer, a.device, s);
+    tracer = choose_tracer(a.tracer, a.device);
     std::fprintf(stderr, "%s: probe tracer %s\n", a.tag(), tracer->why.c_str());
   }
   const bool gpu_tracer = tracer && tracer->kind == TracerKind::vulkan;

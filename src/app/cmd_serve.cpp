@@ -173,7 +173,7 @@ int run_serve(const ServeArgs& a) {
 
   trace::PathOptions path_options;
   path_options.max_bounces = a.probe.bounces;
-  const TracerDecision tracer = choose_tracer(a.tracer, std::nullopt, s);
+  const TracerDecision tracer = choose_tracer(a.tracer, std::nullopt);
   std::fprintf(stderr, "serve: probe tracer %s\n", tracer.why.c_str());
   ProbeEngine engine(tracer.kind, s, path_options, update_options(a.probe), std::nullopt);
   const double budget_ms = frame_budget_ms(a.schedule, std::nullopt);

@@ -8,7 +8,6 @@
 #include "gpu/device_info.h"
 #include "gpu/instance.h"
 #include "scene/scene.h"
-#include "trace_vk/scene_layout.h"
 #include "trace_vk/vk_probe_tracer.h"
 
 namespace ddish::app {
@@ -21,35 +20,28 @@ void add_tracer_option(CLI::App& cmd, std::string& choice) {
       ->capture_default_str();
 }
 
-TracerDecision choose_tracer(const std::string& choice, std::optional<std::uint32_t> device,
-                             const scene::Scene& scene) {
+TracerDecision choose_tracer(const std::string& choice, std::optional<std::uint32_t> device) {
   if (choice == "embree") return {TracerKind::embree, "embree (--tracer embree)"};
   // Only the device's description is needed: no device is opened here.
   const gpu::Instance instance;
   const std::vector<gpu::DeviceInfo> devices = gpu::enumerate_devices(instance);
   const gpu::DeviceInfo& info = devices[gpu::select_device(devices, device)];
-  const std::string unsupported = trace_vk::unsupported_features(scene);
   if (choice == "vulkan") {
     if (!info.ray_tracing)
       throw std::invalid_argument("--tracer vulkan: " + info.name + " (" + info.driver_info +
                                   ") has no Vulkan ray-tracing pipelines (VK_KHR_ray_tracing_pipeline, "
                                   "VK_KHR_acceleration_structure)");
-    if (!unsupported.empty())
-      throw std::invalid_argument("--tracer vulkan: the Vulkan tracer does not support " + unsupported +
-                                  " yet; use --tracer embree");
     return {TracerKind::vulkan, "vulkan on " + info.name + " (--tracer vulkan)"};
   }
   if (!info.ray_tracing) return {TracerKind::embree, "embree (auto: " + info.name + " has no ray-tracing pipelines)"};
   if (info.type == gpu::DeviceType::cpu)
     return {TracerKind::embree, "embree (auto: " + info.name + " is a CPU device; Embree is faster there)"};
-  if (!unsupported.empty())
-    return {TracerKind::embree, "embree (auto: the Vulkan tracer does not support " + unsupported + " yet)"};
   return {TracerKind::vulkan, "vulkan on " + info.name + " (auto)"};
 }
 
-std::string auto_tracer_line(const scene::Scene& scene) {
+std::string auto_tracer_line() {
   try {
-    return choose_tracer("auto", std::nullopt, scene).why;
+    return choose_tracer("auto", std::nullopt).why;
   } catch (const std::exception& e) {
     return std::string("embree (auto: no usable Vulkan device: ") + e.what() + ")";
   }

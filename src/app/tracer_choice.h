@@ -1,9 +1,8 @@
 // `--tracer auto|embree|vulkan` (render, probes, serve): which probe tracer updates the probes,
 // and the in-process probe engine built for the choice. `auto` takes the Vulkan ray-tracing
-// tracer (trace_vk/) only on a GPU whose driver has ray-tracing pipelines and for a scene it can
-// trace, else Embree: a CPU device (lavapipe) traces 22-36x slower than Embree (DESIGN.md), so
-// there auto is always Embree. `vulkan` on a device without ray tracing, or for a scene it
-// cannot trace yet, is one error line (exit 2).
+// tracer (trace_vk/) only on a GPU whose driver has ray-tracing pipelines, else Embree: a CPU
+// device (lavapipe) traces 22-36x slower than Embree (DESIGN.md), so there auto is always
+// Embree. `vulkan` on a device without ray tracing is one error line (exit 2).
 #pragma once
 
 #include <cstdint>
@@ -43,14 +42,13 @@ struct TracerDecision {
   std::string why;  // one line for the run log and `ddish info`
 };
 
-// Decides `choice` for this scene on Vulkan device `device` (--device; default: the default
-// device). Throws std::invalid_argument for `vulkan` where it cannot run.
-TracerDecision choose_tracer(const std::string& choice, std::optional<std::uint32_t> device,
-                             const scene::Scene& scene);
+// Decides `choice` on Vulkan device `device` (--device; default: the default device). Throws
+// std::invalid_argument for `vulkan` where it cannot run.
+TracerDecision choose_tracer(const std::string& choice, std::optional<std::uint32_t> device);
 
-// What `--tracer auto` takes for this scene on the default device, for `ddish info`; never
-// throws (no usable Vulkan device: Embree).
-std::string auto_tracer_line(const scene::Scene& scene);
+// What `--tracer auto` takes on the default device, for `ddish info`; never throws (no usable
+// Vulkan device: Embree).
+std::string auto_tracer_line();
 
 // The in-process probe update for a decision: the Embree path tracer with probes::ProbeTracer,
 // or trace_vk::VkProbeTracer on `shared` (a device opened with ray tracing that outlives the

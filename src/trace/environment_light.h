@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -26,6 +27,21 @@ struct EnvironmentSample {
   float pdf = 0.0f;          // per unit solid angle
 };
 
+// The sampling tables, read-only (trace_vk mirrors them on the GPU instead of building its own):
+// per texel (row-major, row 0 at the top) its weight, luminance x sin(theta) at its row's
+// centre; the normalised CDF over rows (height + 1 entries, from 0 to 1); each row's normalised
+// CDF over its columns (height rows of width + 1 entries); and the weights' total (0: a black
+// map, nothing to sample). sample() picks with the CDFs; the density of a texel in (u, v) is
+// weight x width x height / total.
+struct EnvironmentTables {
+  int width = 0;
+  int height = 0;
+  std::span<const double> weights;
+  std::span<const double> row_cdf;
+  std::span<const double> column_cdf;
+  double total = 0.0;
+};
+
 class EnvironmentLight {
  public:
   explicit EnvironmentLight(std::shared_ptr<const scene::EnvironmentMap> map);
@@ -39,6 +55,9 @@ class EnvironmentLight {
 
   // The probability that sample() picks texel (x, y) (for tests).
   double texel_probability(int x, int y) const;
+
+  const scene::EnvironmentMap& map() const { return *map_; }
+  EnvironmentTables tables() const { return {width_, height_, weights_, row_cdf_, col_cdf_, total_}; }
 
  private:
   std::shared_ptr<const scene::EnvironmentMap> map_;

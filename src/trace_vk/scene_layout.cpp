@@ -4,8 +4,11 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "scene/scene.h"
+#include "trace/environment_light.h"
 #include "trace/ggx.h"
 #include "trace/specular_albedo.h"
 #include "trace/surface.h"
@@ -39,14 +42,23 @@ GpuTextureSlot slot_of(const scene::TextureSlot& slot, std::size_t texture_count
   return g;
 }
 
-}  // namespace
-
-std::string unsupported_features(const scene::Scene& s) {
-  if (s.environment_map) return "an environment map (--environment)";
-  // Their posed vertices change every frame; the acceleration structures only move instances.
-  if (!s.deformed.empty()) return "skinned or morphed meshes";
-  return {};
+// The mesh's vertices as the shaders read them, at `out` (positions.size() of them).
+void write_vertices(const scene::Mesh& mesh, GpuVertex* out) {
+  const std::size_t n = mesh.positions.size();
+  const bool normals = mesh.normals.size() == n;
+  const bool uvs = mesh.uvs.size() == n;
+  const bool uvs1 = mesh.uvs1.size() == n;
+  const bool tangents = mesh.tangents.size() == n;
+  const bool colors = mesh.colors.size() == n;
+  for (std::size_t v = 0; v < n; ++v) {
+    const glm::vec2 uv = uvs ? mesh.uvs[v] : glm::vec2(0.0f);
+    out[v] = {glm::vec4(mesh.positions[v], uv.x), glm::vec4(normals ? mesh.normals[v] : glm::vec3(0.0f), uv.y),
+              tangents ? mesh.tangents[v] : glm::vec4(0.0f), colors ? mesh.colors[v] : glm::vec4(1.0f),
+              glm::vec4(uvs1 ? mesh.uvs1[v] : glm::vec2(0.0f), 0.0f, 0.0f)};
+  }
 }
+
+}  // namespace
 
 std::vector<std::uint32_t> spatially_sorted_indices(const scene::Mesh& mesh) {
   const std::size_t n = mesh.triangle_count();
@@ -81,19 +93,9 @@ SceneLayout SceneLayout::build(const scene::Scene& s) {
     g.first_vertex = static_cast<std::uint32_t>(L.vertices.size());
     g.triangle_count = static_cast<std::uint32_t>(mesh.triangle_count());
     g.material = static_cast<std::uint32_t>(L.materials.size());
-    const std::size_t n = mesh.positions.size();
-    const bool normals = mesh.normals.size() == n;
-    const bool uvs = mesh.uvs.size() == n;
-    const bool uvs1 = mesh.uvs1.size() == n;
-    const bool tangents = mesh.tangents.size() == n;
-    const bool colors = mesh.colors.size() == n;
-    for (std::size_t v = 0; v < n; ++v) {
-      const glm::vec2 uv = uvs ? mesh.uvs[v] : glm::vec2(0.0f);
-      L.vertices.push_back({glm::vec4(mesh.positions[v], uv.x),
-                            glm::vec4(normals ? mesh.normals[v] : glm::vec3(0.0f), uv.y),
-                            tangents ? mesh.tangents[v] : glm::vec4(0.0f), colors ? mesh.colors[v] : glm::vec4(1.0f),
-                            glm::vec4(uvs1 ? mesh.uvs1[v] : glm::vec2(0.0f), 0.0f, 0.0f)});
-    }
+    L.vertices.resize(L.vertices.size() + mesh.positions.size());
+    write_vertices(mesh, L.vertices.data() + g.first_vertex);
+    L.pose_versions.push_back(mesh.pose_version);
     const std::vector<std::uint32_t> sorted = spatially_sorted_indices(mesh);
     L.indices.insert(L.indices.end(), sorted.begin(), sorted.end());
     L.meshes.push_back(g);
@@ -115,6 +117,10 @@ SceneLayout SceneLayout::build(const scene::Scene& s) {
     gm.emissive_texture = slot_of(m.emissive_texture, s.textures.size());
     L.materials.push_back(gm);
   }
+
+  L.deformed.assign(s.meshes.size(), false);
+  for (const scene::DeformedMesh& d : s.deformed)
+    if (d.mesh >= 0 && static_cast<std::size_t>(d.mesh) < s.meshes.size()) L.deformed[std::size_t(d.mesh)] = true;
 
   // The albedo table at its own nodes: x = cbrt(mu) and log(alpha) uniform over [0, 1]
   // (trace/specular_albedo.cpp), so bilinear interpolation on the GPU reproduces it.
@@ -159,8 +165,44 @@ SceneLayout SceneLayout::build(const scene::Scene& s) {
     L.textures.push_back(g);
   }
 
+  if (s.environment_map) {
+    // A black map lights nothing: it stays width 0, as the CPU tracer then samples nothing and
+    // adds zero radiance.
+    const trace::EnvironmentLight light(s.environment_map);
+    const trace::EnvironmentTables t = light.tables();
+    if (t.total > 0.0) {
+      const scene::EnvironmentMap& map = light.map();
+      L.environment = {static_cast<std::uint32_t>(t.width), static_cast<std::uint32_t>(t.height),
+                       std::cos(map.rotation), std::sin(map.rotation)};
+      const double texels = double(t.width) * double(t.height);
+      for (int y = 0; y < t.height; ++y)
+        for (int x = 0; x < t.width; ++x) {
+          const std::size_t k = std::size_t(y) * std::size_t(t.width) + std::size_t(x);
+          L.environment_texels.push_back(glm::vec4(map.texel(x, y), float(t.weights[k] * texels / t.total)));
+        }
+      L.environment_cdf.assign(t.row_cdf.begin(), t.row_cdf.end());
+      L.environment_cdf.insert(L.environment_cdf.end(), t.column_cdf.begin(), t.column_cdf.end());
+    }
+  }
+
   L.place(s);
   return L;
+}
+
+std::vector<std::uint32_t> SceneLayout::repose(const scene::Scene& s) {
+  std::vector<std::uint32_t> changed;
+  for (std::size_t m = 0; m < meshes.size() && m < s.meshes.size(); ++m) {
+    const scene::Mesh& mesh = s.meshes[m];
+    if (!deformed[m] || mesh.pose_version == pose_versions[m]) continue;
+    const std::uint32_t end = m + 1 < meshes.size() ? meshes[m + 1].first_vertex : std::uint32_t(vertices.size());
+    if (mesh.positions.size() != end - meshes[m].first_vertex || mesh.triangle_count() != meshes[m].triangle_count)
+      throw std::invalid_argument("SceneLayout::repose: mesh " + std::to_string(m) +
+                                  " changed its vertex or triangle count");
+    write_vertices(mesh, vertices.data() + meshes[m].first_vertex);
+    pose_versions[m] = mesh.pose_version;
+    changed.push_back(static_cast<std::uint32_t>(m));
+  }
+  return changed;
 }
 
 void SceneLayout::place(const scene::Scene& s) {

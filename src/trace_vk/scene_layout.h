@@ -3,13 +3,14 @@
 // spatially sorted order (Morton order of their centroids: lavapipe's BVH keeps the input order,
 // and an unsorted mesh traces orders of magnitude slower, DESIGN.md), one material per mesh,
 // instances, the emissive triangles in world space with their power CDF (trace::LightSet's
-// choice, by area x luminance), the punctual lights, and the BSDF's albedo table. Building it
-// needs no device, so it is tested on its own.
+// choice, by area x luminance), the punctual lights, the BSDF's albedo table, and the
+// environment map with trace::EnvironmentLight's sampling tables. Deformed meshes' vertices are
+// rewritten when their pose changes. Building it needs no device, so it is tested on its own
+// (tests/trace_vk/scene_layout_test.cpp).
 #pragma once
 
 #include <cstdint>
 #include <span>
-#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -106,12 +107,17 @@ struct GpuLight {
   glm::vec4 spot{0.0f};
 };
 
+// The environment map's size and rotation (trace_environment.glsl's EnvironmentParams; width 0:
+// no map, or a black one).
+struct GpuEnvironment {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  float cos_rotation = 1.0f;
+  float sin_rotation = 0.0f;
+};
+
 // The albedo table's size: trace::DielectricSpecularAlbedo's 32 x 32 nodes.
 inline constexpr int kAlbedoNodes = 32;
-
-// What the GPU tracer does not do yet, for this scene ("" when it can trace it): environment
-// maps, skinned or morphed meshes. Callers refuse the scene with it.
-std::string unsupported_features(const scene::Scene& scene);
 
 // The triangles of `mesh` (indices, 3 per triangle) in Morton order of their centroids.
 std::vector<std::uint32_t> spatially_sorted_indices(const scene::Mesh& mesh);
@@ -120,6 +126,10 @@ struct SceneLayout {
   std::vector<GpuVertex> vertices;
   std::vector<std::uint32_t> indices;  // per mesh, sorted, relative to its first vertex
   std::vector<GpuMesh> meshes;
+  // Per mesh: whether Scene::pose deforms it (skin, morph targets), and the pose_version its
+  // vertices above are of.
+  std::vector<bool> deformed;
+  std::vector<std::uint64_t> pose_versions;
   std::vector<GpuMaterial> materials;  // one per mesh
   std::vector<GpuInstance> instances;
   std::vector<GpuEmissive> emissive;   // the emissive instances' triangles, in index order
@@ -130,10 +140,20 @@ struct SceneLayout {
   std::vector<GpuTexture> textures;
   std::vector<GpuTextureLevel> texture_levels;
   std::vector<std::uint32_t> texels;
+  // The environment map as trace::EnvironmentLight samples it (its own tables, in floats): the
+  // texels' radiance with, in w, each texel's density in (u, v) (weight x width x height /
+  // total); the row CDF (height + 1) followed by every row's column CDF (width + 1 each).
+  GpuEnvironment environment;
+  std::vector<glm::vec4> environment_texels;
+  std::vector<float> environment_cdf;
 
   // The whole layout of a posed scene.
   static SceneLayout build(const scene::Scene& scene);
-  // Re-places instances, emissive triangles and lights after scene.pose (meshes stay).
+  // Rewrites the vertices of the deformed meshes whose pose changed since (their pose_version),
+  // and returns those meshes (their triangles and order stay: only positions, normals and
+  // tangents move). Then place() follows the rest.
+  std::vector<std::uint32_t> repose(const scene::Scene& scene);
+  // Re-places instances, emissive triangles and lights after scene.pose.
   void place(const scene::Scene& scene);
 };
 

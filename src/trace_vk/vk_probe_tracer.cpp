@@ -31,7 +31,7 @@ constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 constexpr VkBufferUsageFlags kBuildInput = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                            VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
                                            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-constexpr std::uint32_t kRtBindings = 15;  // trace_scene.glsl and probe_trace.rgen
+constexpr std::uint32_t kRtBindings = 17;  // trace_scene.glsl, trace_environment.glsl and probe_trace.rgen
 
 // The shaders' per-work-item records (probe_trace.rgen, probe_project.comp).
 struct ProbeWork {
@@ -56,6 +56,7 @@ struct TraceParams {
   float indirect_clamp;
   std::uint32_t light_count, emissive_count;
   float sky_r, sky_g, sky_b;
+  GpuEnvironment environment;
 };
 struct ProjectParams {
   std::uint32_t samples, order, work_count;
@@ -103,9 +104,11 @@ struct VkProbeTracer::Impl {
     textures = make_buffer(d, runner, layout.textures, kStorage);
     texture_levels = make_buffer(d, runner, layout.texture_levels, kStorage);
     texels = make_buffer(d, runner, layout.texels, kStorage);
+    environment_texels = make_buffer(d, runner, layout.environment_texels, kStorage);
+    environment_cdf = make_buffer(d, runner, layout.environment_cdf, kStorage);
     place_buffers();
     acceleration = std::make_unique<SceneAcceleration>(d, rt, runner, vertices, indices, layout.meshes,
-                                                       layout.materials, layout.instances);
+                                                       layout.materials, layout.instances, layout.deformed);
     make_rt_pipeline();
     project = std::make_unique<gpu::ComputePipeline>(d, gpu::ShaderModule::load(d, "probe_project.comp"),
                                                      gpu::ComputePipelineDesc{.storage_buffers = 6,
@@ -132,8 +135,8 @@ struct VkProbeTracer::Impl {
   SceneLayout layout;
   trace::PathOptions path;
   glm::vec3 sky;
-  gpu::Buffer vertices, indices, meshes, materials, albedo, textures, texture_levels, texels, instances, emissive,
-      lights;
+  gpu::Buffer vertices, indices, meshes, materials, albedo, textures, texture_levels, texels, environment_texels,
+      environment_cdf, instances, emissive, lights;
   std::unique_ptr<SceneAcceleration> acceleration;
 
   gpu::DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout> set_layout;
@@ -282,7 +285,7 @@ void VkProbeTracer::Impl::write_descriptors() {
   as.pAccelerationStructures = &tlas;
   const std::array<const gpu::Buffer*, kRtBindings - 1> buffers = {
       paths.get(), work.get(), &vertices, &indices, &meshes, &instances, &materials, &emissive, &lights, &albedo,
-      lattice.get(), &textures, &texture_levels, &texels};
+      lattice.get(), &textures, &texture_levels, &texels, &environment_texels, &environment_cdf};
   std::array<VkDescriptorBufferInfo, kRtBindings - 1> infos{};
   std::array<VkWriteDescriptorSet, kRtBindings> writes{};
   writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -308,8 +311,6 @@ VkProbeTracer::VkProbeTracer(const gpu::Device& device, const scene::Scene& scen
                              const probes::UpdateOptions& options)
     : options_(options) {
   probes::check_update_options(options);
-  if (const std::string missing = unsupported_features(scene); !missing.empty())
-    throw std::invalid_argument("the Vulkan tracer does not support " + missing + " yet; use --tracer embree");
   impl_ = std::make_unique<Impl>(device, scene, path);
 }
 
@@ -322,9 +323,20 @@ void VkProbeTracer::set_options(const probes::UpdateOptions& options) {
 
 void VkProbeTracer::scene_posed(const scene::Scene& scene, std::span<const int> moved) {
   Impl& im = *impl_;
+  // Deformed meshes that changed pose: their vertices again (in place: the structures keep
+  // the buffer's addresses), and their bottom levels.
+  const std::vector<std::uint32_t> reshaped = im.layout.repose(scene);
+  for (std::uint32_t m : reshaped) {
+    const GpuMesh& mesh = im.layout.meshes[m];
+    const std::size_t end = m + 1 < im.layout.meshes.size() ? im.layout.meshes[m + 1].first_vertex
+                                                             : im.layout.vertices.size();
+    gpu::upload(im.device, im.runner, im.vertices, im.layout.vertices.data() + mesh.first_vertex,
+                (end - mesh.first_vertex) * sizeof(GpuVertex), VkDeviceSize(mesh.first_vertex) * sizeof(GpuVertex));
+  }
+  if (!reshaped.empty()) im.acceleration->refit(im.runner, reshaped);
   im.layout.place(scene);
   im.place_buffers();
-  if (!moved.empty()) im.acceleration->update(im.runner, im.layout.instances);
+  if (!moved.empty() || !reshaped.empty()) im.acceleration->update(im.runner, im.layout.instances);
 }
 
 const gpu::Buffer& VkProbeTracer::coefficient_buffer() const {
@@ -410,7 +422,8 @@ probes::UpdateStats VkProbeTracer::update(probes::ProbeVolume& volume, std::span
                            static_cast<std::uint32_t>(im.layout.emissive.size()),
                            im.sky.r,
                            im.sky.g,
-                           im.sky.b};
+                           im.sky.b,
+                           im.layout.environment};
       const ProjectParams pp{n, static_cast<std::uint32_t>(volume.sh_order()), count};
       im.runner.run([&](VkCommandBuffer cmd) {
         // Host writes and earlier submissions (uploads, builds, the last update) before the trace.

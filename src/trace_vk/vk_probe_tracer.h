@@ -34,9 +34,8 @@ namespace ddish::trace_vk {
 class VkProbeTracer final : public probes::ProbeUpdater {
  public:
   // The device must have been opened with ray tracing on (gpu::DeviceFeatures::ray_tracing).
-  // Throws std::invalid_argument naming what the GPU tracer cannot do yet for this scene
-  // (scene_layout.h: unsupported_features), gpu::GpuError for a device without ray tracing.
-  // The scene is posed; the device outlives the tracer.
+  // Throws gpu::GpuError for a device without ray tracing. The scene is posed; the device
+  // outlives the tracer.
   VkProbeTracer(const gpu::Device& device, const scene::Scene& scene, const trace::PathOptions& path,
                 const probes::UpdateOptions& options);
   ~VkProbeTracer() override;
@@ -48,7 +47,9 @@ class VkProbeTracer final : public probes::ProbeUpdater {
   probes::UpdateStats update(probes::ProbeVolume& volume, std::span<const std::uint32_t> probes) const override;
 
   // Follows the scene posed at a new time: instance transforms (the top-level structure is
-  // rebuilt), emissive triangles and lights. `scene` is the one the tracer was made for.
+  // rebuilt), the vertices of deformed meshes whose pose_version changed (their bottom-level
+  // structures are refitted), emissive triangles and lights. `scene` is the one the tracer was
+  // made for.
   void scene_posed(const scene::Scene& scene, std::span<const int> moved);
 
   // The running average on the GPU: probe after probe, coefficient after coefficient, RGB as

@@ -2,8 +2,11 @@
 // lavapipe), statistically over every probe of a small grid (statistical_comparison.h): the
 // Cornell box (an emissive quad, no sky: diffuse interreflection, next-event estimation of
 // emissive triangles with MIS), the sphere over a ground under a point light and a sky, the
-// Cornell box with a glossy metal block under a spot light, the animated Cornell box after it
-// moved, and a textured scene with an alpha-masked and an alpha-blended panel (textures through
+// Cornell box with a glossy metal block under a spot light, the sphere over a glossy ground lit
+// by an HDR environment map (importance-sampled next-event estimation with MIS, the map's
+// rotation and intensity), the animated Cornell box after it moved, a skinned bar and a morphed
+// panel after they changed pose (vertices uploaded again, bottom levels refitted), and a
+// textured scene with an alpha-masked and an alpha-blended panel (textures through
 // KHR_texture_transform, mip levels from the ray cones, vertex colours, any-hit shaders).
 //
 // Thresholds: with R = 16 updates per tracer each z is close to Student's t with 30 degrees of
@@ -28,6 +31,7 @@
 #include "statistical_comparison.h"
 #include "trace/tracer.h"
 #include "trace_vk/vk_probe_tracer.h"
+#include "test_environment.h"
 #include "vk_test.h"
 
 namespace ddish::trace_vk::test {
@@ -103,6 +107,14 @@ TEST_F(VkVersusEmbree, GlossyMetalUnderSpotLight) {
   expect_same(c, 27 * 9 * 3 / 2);
 }
 
+TEST_F(VkVersusEmbree, SphereOverGlossyGroundUnderAnEnvironmentMap) {
+  scene::Scene s = raster::test::sphere_over_ground(0.35f);
+  s.environment_map = test_environment_map();
+  const probes::ProbeGrid grid(scene::Aabb{{-1.5f, 0.2f, -1.5f}, {1.5f, 1.6f, 1.5f}}, {3, 3, 3});
+  const Comparison c = run(s, grid, 96, 6);
+  expect_same(c, 27 * 9 * 3 / 2);
+}
+
 TEST_F(VkVersusEmbree, AnimatedCornellBoxAfterItMoved) {
   scene::Scene s = bundled("cornell_animated.gltf");
   trace::PathOptions path;
@@ -122,6 +134,72 @@ TEST_F(VkVersusEmbree, AnimatedCornellBoxAfterItMoved) {
   const Comparison c = compare(single_update_estimates(gpu, grid, 2, kUpdates),
                                single_update_estimates(cpu_tracer, grid, 2, kUpdates), kBias);
   expect_same(c, 27 * 9 * 3 / 2);
+}
+
+// Both tracers built at t = 0 and posed at `t`; the GPU's estimates are also compared with the
+// CPU's at t = 0, to show that the pose change is visible to the test.
+struct PosedComparison {
+  Comparison posed;        // both at t
+  Comparison stale_pose;   // the GPU at t against the CPU at 0
+};
+
+class VkVersusEmbreePosed : public VkVersusEmbree {
+ protected:
+  PosedComparison run_posed(scene::Scene& s, double t, const probes::ProbeGrid& grid) {
+    trace::PathOptions path;
+    path.max_bounces = 6;
+    const probes::UpdateOptions gpu_options{.samples = 96, .hysteresis = 0.0f, .seed = 505};
+    const probes::UpdateOptions cpu_options{.samples = 96, .hysteresis = 0.0f, .seed = 606};
+    s.pose(0.0);
+    VkProbeTracer gpu(device(), s, path, gpu_options);
+    trace::Tracer cpu(s, path);
+    const probes::TracerSource source(cpu);
+    const probes::ProbeTracer cpu_tracer(source, cpu_options);
+    const Estimates cpu_rest = single_update_estimates(cpu_tracer, grid, 2, kUpdates);
+    const std::vector<int> moved = s.pose(t);
+    EXPECT_FALSE(moved.empty());
+    gpu.scene_posed(s, moved);
+    cpu.update(s, moved);
+    const Estimates a = single_update_estimates(gpu, grid, 2, kUpdates);
+    return {compare(a, single_update_estimates(cpu_tracer, grid, 2, kUpdates), kBias), compare(a, cpu_rest, 1.0)};
+  }
+};
+
+// A ground and a sun, so that the bar casts shadows and bounces light.
+void add_ground_and_sun(scene::Scene& s) {
+  raster::test::add_instance(s, raster::test::ground_quad(2.5f),
+                             raster::test::make_material({0.6f, 0.6f, 0.6f}, 0.0f, 0.6f), {0.0f, 0.0f, 0.0f});
+  s.sidecar.environment = glm::vec3(0.3f, 0.4f, 0.6f);
+  scene::Light sun;
+  sun.name = "sun";
+  sun.type = scene::LightType::Directional;
+  sun.intensity = 3.0f;
+  raster::test::add_light(s, sun, {0, 5, 0}, {0.4f, -1.0f, 0.3f});
+}
+
+TEST_F(VkVersusEmbreePosed, SkinnedBarAfterItBent) {
+  scene::Scene s = bundled("skinned_bar.gltf");
+  ASSERT_FALSE(s.deformed.empty());
+  add_ground_and_sun(s);
+  // At t = 1 the bar's upper half lies along -x at y 0.9-1.1 (scenes/README.md); no probe sits
+  // inside it either way.
+  const probes::ProbeGrid grid(scene::Aabb{{-1.3f, 0.25f, -0.5f}, {0.5f, 2.45f, 0.5f}}, {3, 3, 3});
+  const PosedComparison c = run_posed(s, 1.0, grid);
+  expect_same(c.posed, 27 * 9 * 3 / 2);
+  EXPECT_GT(c.stale_pose.mean_z2, 2.0) << "the bent bar looks like the straight one";
+  std::printf("against the straight bar: mean z^2 %.2f, max |z| %.1f\n", c.stale_pose.mean_z2, c.stale_pose.max_abs_z);
+}
+
+TEST_F(VkVersusEmbreePosed, MorphedPanelAfterItGrew) {
+  scene::Scene s = bundled("morph_panels.gltf");
+  ASSERT_FALSE(s.deformed.empty());
+  add_ground_and_sun(s);
+  // The right panel's top edge rises from 1 to 2 m over 2 s: 1.75 m at t = 1.5.
+  const probes::ProbeGrid grid(scene::Aabb{{-0.8f, 0.3f, -0.6f}, {2.3f, 2.1f, 0.6f}}, {3, 3, 3});
+  const PosedComparison c = run_posed(s, 1.5, grid);
+  expect_same(c.posed, 27 * 9 * 3 / 2);
+  EXPECT_GT(c.stale_pose.mean_z2, 2.0) << "the grown panel looks like the rest pose";
+  std::printf("against the rest pose: mean z^2 %.2f, max |z| %.1f\n", c.stale_pose.mean_z2, c.stale_pose.max_abs_z);
 }
 
 // An RGBA8 checker of n x n texels: texel (x, y) is `a` where (x + y) is even, else `b`.
