@@ -36,7 +36,7 @@ void ProbeTracer::set_options(const UpdateOptions& options) {
 
 std::uint32_t ProbeTracer::trace_probe(const ProbeVolume& volume, std::uint32_t probe,
                                        std::uint64_t frame, sh::ShRgb& estimate,
-                                       std::uint64_t* invalid) const {
+                                       std::uint64_t* invalid, MomentEstimate* moments) const {
   const std::uint32_t n = options_.samples;
   // Each lattice direction stands for an equal share 4π/N of the sphere.
   const float weight = sh::uniform_sphere_weight(n);
@@ -50,6 +50,8 @@ std::uint32_t ProbeTracer::trace_probe(const ProbeVolume& volume, std::uint32_t 
   const float cone_spread = std::sqrt(weight);
 
   sh::ShProjector projector(volume.sh_order());
+  if (moments) moments->clear();
+  const float range = volume.moment_range();
   std::uint32_t backfaces = 0;
   for (std::uint32_t i = 0; i < n; ++i) {
     trace::Ray ray;
@@ -58,6 +60,8 @@ std::uint32_t ProbeTracer::trace_probe(const ProbeVolume& volume, std::uint32_t 
     ray.direction = glm::normalize(rotation * fibonacci_direction(i, n));
     trace::PathSample s = source_.trace_path(ray, sampler);
     if (s.hit && s.backface) ++backfaces;
+    // The distance is geometry: valid even when the path's radiance is not.
+    if (moments) moments->add(ray.direction, s.hit ? s.hit_distance : HUGE_VALF, range);
     const glm::vec3 L = s.radiance;
     if (!std::isfinite(L.x) || !std::isfinite(L.y) || !std::isfinite(L.z)) {
       // One NaN would poison the running average for good; drop the path and report it.
@@ -88,11 +92,13 @@ UpdateStats ProbeTracer::update(ProbeVolume& volume, std::span<const std::uint32
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, work.size(), 1),
                     [&](const tbb::blocked_range<std::size_t>& range) {
     sh::ShRgb estimate(volume.sh_order());
+    MomentEstimate moments(volume.moment_resolution());
+    MomentEstimate* gather = volume.has_moments() ? &moments : nullptr;
     std::uint64_t local_invalid = 0;
     for (std::size_t w = range.begin(); w != range.end(); ++w) {
       const std::uint32_t p = work[w];
       std::uint32_t backfaces =
-          trace_probe(volume, p, stats.frame, estimate, &local_invalid);
+          trace_probe(volume, p, stats.frame, estimate, &local_invalid, gather);
       ProbeState& state = volume.state(p);
       if (state.unclassified()) {
         Classification c = classify(backfaces, options_.samples, options_.backface_threshold);
@@ -107,7 +113,7 @@ UpdateStats ProbeTracer::update(ProbeVolume& volume, std::span<const std::uint32
       }
       // Each probe's state and coefficients belong to exactly one task: no locking needed.
       volume.accumulate(p, estimate, options_.samples, options_.hysteresis, options_.blend,
-                        options_.reference_samples);
+                        options_.reference_samples, gather);
     }
     invalid.fetch_add(local_invalid, std::memory_order_relaxed);
   });

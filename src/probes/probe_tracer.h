@@ -1,7 +1,8 @@
 // The probe update: for every active probe, N paths from the probe position in the directions of
 // a randomly rotated spherical Fibonacci lattice, their radiance projected onto SH (weight 4π/N
 // per path) and blended into the probe's fp32 running average. A probe's first update also
-// classifies it (classification.h). Parallel over probes with TBB; every probe draws from its own
+// classifies it (classification.h). When the volume keeps distance moments (moment_map.h), the
+// same rays' first-hit distances feed them: no extra rays. Parallel over probes with TBB; every probe draws from its own
 // Sampler stream (seed, probe index, volume update number), so the coefficients depend on the
 // seed and the sequence of updates only, never on how threads split the work.
 #pragma once
@@ -70,9 +71,11 @@ class ProbeTracer final : public ProbeUpdater {
 
   // The SH projection of one probe's rays for the volume's update number `frame`, without
   // touching the volume (the estimate has the volume's order). Returns the number of back-face
-  // first hits; adds the paths dropped for non-finite radiance to *invalid when given.
+  // first hits; adds the paths dropped for non-finite radiance to *invalid when given; bins the
+  // rays' first-hit distances into *moments when given (cleared first; the volume's range).
   std::uint32_t trace_probe(const ProbeVolume& volume, std::uint32_t probe, std::uint64_t frame,
-                            sh::ShRgb& estimate, std::uint64_t* invalid = nullptr) const;
+                            sh::ShRgb& estimate, std::uint64_t* invalid = nullptr,
+                            MomentEstimate* moments = nullptr) const;
 
  private:
   const RadianceSource& source_;
