@@ -48,21 +48,15 @@ void pack_probe_slots(const probes::ProbeVolume& volume, std::uint32_t probe, in
       out[std::size_t(1 + 3 * i + c)] = to_half(coeffs[std::size_t(i)][c], clamps);
 }
 
-void pack_probe_record(const probes::ProbeVolume& volume, std::uint32_t probe, int order,
-                       std::span<std::uint32_t> out, SlotClamps& clamps) {
-  const std::size_t halves = 4 * std::size_t(probe_texture_count(order));
-  const std::size_t texels = std::size_t(volume.moment_texels());
-  if (out.size() != halves / 2 + texels)
-    throw std::invalid_argument("probe record of " + std::to_string(out.size()) + " uints, " +
-                                std::to_string(halves / 2 + texels) + " needed");
-  std::uint16_t slots[4 * 19];
-  pack_probe_slots(volume, probe, order, std::span(slots, halves), clamps);
-  for (std::size_t j = 0; j < halves / 2; ++j)
-    out[j] = std::uint32_t(slots[2 * j]) | (std::uint32_t(slots[2 * j + 1]) << 16);
+void pack_probe_moments(const probes::ProbeVolume& volume, std::uint32_t probe,
+                        std::span<std::uint32_t> out, SlotClamps& clamps) {
   const auto moments = volume.moments(probe);
-  for (std::size_t t = 0; t < texels; ++t)
-    out[halves / 2 + t] = std::uint32_t(to_half(moments[t].x, clamps)) |
-                          (std::uint32_t(to_half(moments[t].y, clamps)) << 16);
+  if (out.size() != moments.size())
+    throw std::invalid_argument("probe moment map of " + std::to_string(out.size()) + " uints, " +
+                                std::to_string(moments.size()) + " needed");
+  for (std::size_t t = 0; t < moments.size(); ++t)
+    out[t] = std::uint32_t(to_half(moments[t].x, clamps)) |
+             (std::uint32_t(to_half(moments[t].y, clamps)) << 16);
 }
 
 std::vector<ProbeRun> probe_row_runs(std::span<const std::uint32_t> probes,

@@ -32,11 +32,10 @@ struct SlotClamps {
 void pack_probe_slots(const probes::ProbeVolume& volume, std::uint32_t probe, int order,
                       std::span<std::uint16_t> out, SlotClamps& clamps);
 
-// Writes probe `probe`'s record for the visibility buffer (ProbeTextures::record_uints() uints):
-// its 4 * probe_texture_count(order) slot halves two per uint (low half first), then each
-// moment texel as (half(mean d), half(mean d^2)) in one uint. The volume must have moments.
-void pack_probe_record(const probes::ProbeVolume& volume, std::uint32_t probe, int order,
-                       std::span<std::uint32_t> out, SlotClamps& clamps);
+// Writes probe `probe`'s moment map for the GPU (volume.moment_texels() uints): each texel as
+// half(mean d) | half(mean d^2) << 16.
+void pack_probe_moments(const probes::ProbeVolume& volume, std::uint32_t probe,
+                        std::span<std::uint32_t> out, SlotClamps& clamps);
 
 // Consecutive probes of one grid row (same y and z, x increasing): probes first .. first+count-1
 // in grid index order.

@@ -8,13 +8,13 @@
 // k / 4, with w = 1 for an active and 0 for an inactive probe (an active probe that has not
 // been updated yet counts, with zero radiance): 7 textures (56 bytes a probe) at L2. Values beyond fp16 are saturated to +-65504 and counted, never stored as Inf.
 //
-// A volume with distance moments (probes/moment_map.h) also gets a record per probe in a storage
-// buffer (record_uints() uints: the same slot halves, two per uint, then the moment texels as
-// half pairs), which the shader's visibility-aware interpolation reads probe by probe: one read
-// per value, where eight texelFetch per texture cost far more on lavapipe (docs/probe-visibility.md).
+// A volume with distance moments (probes/moment_map.h) also gets its moment maps in a storage
+// buffer (probe i's R x R texels at i * R^2, each the uint of two halves: mean d and mean d^2
+// over the range, low half first), which the shader's visibility weights read, one texel per
+// probe.
 //
 // Descriptor set, layout(): binding 0 uniform buffer ProbeGridUniform (std140), binding 1 an
-// array of texture_count() combined image samplers (sampler3D probe_sh[]), binding 2 the record
+// array of texture_count() combined image samplers (sampler3D probe_sh[]), binding 2 the moment
 // storage buffer (a 16-byte placeholder without moments), visible to every stage. A shader compiled with PROBE_SH_ORDER = L reads the first probe_texture_count(L) of
 // them, so L must not exceed order().
 #pragma once
@@ -47,7 +47,7 @@ struct ProbeGridUniform {
   glm::vec4 counts{1.0f};       // xyz: probes per axis; w: texture count
   glm::vec4 bounds_min{0.0f};   // xyz: the volume's bounds
   glm::vec4 cell_size{0.0f};    // xyz: distance between neighbouring probes
-  // x: moment map resolution (0: none, trilinear textures only); y: record stride in uints;
+  // x: moment map resolution R (0: none, trilinear textures only); y: R * R;
   // z: the volume's moment range; w: the distance the visibility test moves the shaded point.
   glm::vec4 visibility{0.0f};
 };
@@ -69,7 +69,7 @@ class ProbeTextures {
  public:
   static constexpr std::uint32_t kGridBinding = 0;
   static constexpr std::uint32_t kShBinding = 1;
-  static constexpr std::uint32_t kRecordBinding = 2;
+  static constexpr std::uint32_t kMomentBinding = 2;
   // A dirty list that falls into more row runs (copy regions per texture) than this fraction
   // of the volume's probes, or holds more than half of them, is uploaded whole. Measured on
   // lavapipe, 16^3 L2 volume (probe_upload_test.cpp, DISABLED_UploadCost; the whole volume
@@ -106,9 +106,8 @@ class ProbeTextures {
   bool ready() const { return initialized_; }
   int order() const { return order_; }
   std::uint32_t texture_count() const { return std::uint32_t(textures_.size()); }
-  // The volume's moment map resolution (0: none) and the uints of one probe record (0: none).
+  // The volume's moment map resolution (0: none).
   int moment_resolution() const { return moment_res_; }
-  std::uint32_t record_uints() const { return record_uints_; }
   const probes::ProbeGrid& grid() const { return grid_; }
   const ProbeGridUniform& grid_uniform() const { return uniform_; }
   // Values saturated or zeroed on their way to fp16 over all uploads so far.
@@ -134,10 +133,10 @@ class ProbeTextures {
   std::vector<Texture> textures_;
   gpu::Buffer staging_;
   gpu::Buffer grid_buffer_;
-  gpu::Buffer records_;  // per-probe records (visibility), or a placeholder
+  gpu::Buffer moments_;  // the moment maps, or a placeholder
   int moment_res_ = 0;
-  std::uint32_t record_uints_ = 0;
-  std::vector<std::uint32_t> record_scratch_;
+  std::uint32_t moment_texels_ = 0;  // per probe; 0 without moments
+  std::vector<std::uint32_t> moment_scratch_;
   Sampler sampler_;
   OwnedDescriptorSet descriptors_;
   std::vector<std::uint16_t> texels_;  // packing scratch, kept to avoid reallocation
