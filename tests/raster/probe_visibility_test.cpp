@@ -135,4 +135,33 @@ TEST_F(ProbeVisibilityTest, ClearMomentsGiveTheBackfaceWeightedMeanAndDeadCellsG
   EXPECT_EQ(results[0], glm::vec4(0.0f));
 }
 
+// The weights depend on ratios only (distances over the moment range, the bias in cells), so a
+// scene scaled from a millimetre to ten kilometres gives the same result, and a finite one.
+TEST_F(ProbeVisibilityTest, TheSameWeightsFromAMillimetreToTenKilometres) {
+  std::vector<float> results;
+  for (float k : {1e-3f, 1.0f, 1e4f}) {
+    probes::ProbeVolume v(
+        probes::ProbeGrid(scene::Aabb{glm::vec3(0.0f), glm::vec3(2.0f * k)}, {2, 2, 2}), 2, 8);
+    for (std::uint32_t i = 0; i < 8; ++i) {
+      sh::ShRgb s(2);
+      s[0] = glm::vec3(float(1u << i));
+      v.set_sh(i, s);
+      // A wall a tenth of the range from every probe on the x = 0.5 side.
+      if ((i & 1u) == 0)
+        for (glm::vec2& t : v.moments(i)) t = {0.1f, 0.1f * 0.1f + 0.02f * 0.02f};
+    }
+    ProbeTextures textures(device(), v);
+    textures.upload(runner(), v);
+    const std::vector<Query> q = {visible_l0_query(glm::vec3(1.3f, 0.8f, 1.1f) * k,
+                                                   glm::normalize(glm::vec3(1.0f, 0.2f, -0.1f)))};
+    const auto r = Harness(device(), textures, brdf(), 2).run(runner(), q);
+    ASSERT_TRUE(std::isfinite(r[0].x)) << "scale " << k;
+    results.push_back(r[0].x);
+  }
+  EXPECT_NEAR(results[0], results[1], 1e-3f * results[1]);
+  EXPECT_NEAR(results[2], results[1], 1e-3f * results[1]);
+  // The wall hides the x = 0.5 probes (even L0 values): the result lies near the odd ones' mean.
+  EXPECT_GT(results[1], 2.0f * 1.0f);
+}
+
 }  // namespace ddish::raster::test
