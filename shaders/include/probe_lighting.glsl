@@ -29,8 +29,9 @@
 // ((1 + cos)/2)^2 + 0.2 x Chebyshev's bound P(d >= r) <= var / (var + (r - mean)^2), cubed, taken
 // at the point moved visibility.w (0.2 n + 0.8 v) off the surface so that it does not shadow
 // itself, and crushed below 0.2 (w^3 / 0.04). The moments come from probe_moments (binding 2:
-// probe i's R x R octahedral texels at i * R^2, each packHalf2x16(mean d, mean d^2), divided by
-// the range visibility.z). The weights are then folded into the trilinear fractions, per axis
+// probe i's record at i * (R^2 + 3): its R x R octahedral texels, each packHalf2x16(mean d,
+// mean d^2) divided by the range visibility.z, then its relocation offset as 3 float bits; the
+// probe's distances and directions are measured from its relocated position). The weights are then folded into the trilinear fractions, per axis
 // the share on the upper probes, and the textures are fetched once at the moved point: exact
 // when the weights are a product over the axes (a wall across an axis hides a face of the cell),
 // an approximation otherwise, at a fraction of the cost of reading the 8 probes one by one
@@ -66,7 +67,7 @@ layout(set = PROBE_SET, binding = 0, std140) uniform ProbeGridBlock {
   vec4 counts;       // xyz: probes per axis; w: number of probe_sh textures
   vec4 bounds_min;   // xyz: the volume's bounds (probe 0 sits half a cell inside)
   vec4 cell_size;    // xyz: distance between neighbouring probes
-  vec4 visibility;   // x: moment map resolution R (0: no moments); y: R * R;
+  vec4 visibility;   // x: moment map resolution R (0: no moments); y: record stride R * R + 3;
                      // z: moment range (metres); w: bias distance (metres)
 } probe_grid;
 // Set PROBE_SET, binding 1: the slot textures, linear filtering, clamped to the edge.
@@ -190,7 +191,11 @@ bool probe_interpolate_visible(vec3 world_pos, vec3 normal, vec3 to_viewer,
     const ivec3 o = ivec3(c & 1, (c >> 1) & 1, c >> 2);
     const ivec3 cell = min(ivec3(base) + o, counts - 1);
     const uint rec = uint(cell.x + counts.x * (cell.y + counts.y * cell.z)) * stride;
-    const vec3 probe_pos = probe_grid.origin.xyz + vec3(cell) * probe_grid.cell_size.xyz;
+    // Where the probe traced from: its grid position plus its relocation offset.
+    const uint at = rec + uint(res * res);
+    const vec3 offset = uintBitsToFloat(uvec3(probe_moments[at], probe_moments[at + 1u],
+                                              probe_moments[at + 2u]));
+    const vec3 probe_pos = probe_grid.origin.xyz + vec3(cell) * probe_grid.cell_size.xyz + offset;
     const vec3 tri3 = mix(1.0 - t, t, vec3(o));
     float w = tri3.x * tri3.y * tri3.z;
     const vec3 to_probe = probe_pos - world_pos;

@@ -124,7 +124,7 @@ Action make_probes(CLI::App& root) {
       root.add_subcommand("probes", "update a probe volume and write it (debugging, baking)");
   cmd->add_option("scene", a->scene, "glTF 2.0 scene (.gltf or .glb)")->required();
   add_probe_options(*cmd, a->probe);
-  add_visibility_option(*cmd, a->probe);
+  add_visibility_options(*cmd, a->probe);
   add_lighting_options(*cmd, a->lighting, /*exposure=*/false);
   cmd->add_option("--updates", a->updates, "probe updates to run")->capture_default_str();
   cmd->add_option("--out", a->out, "write the volume here (and a JSON summary at PATH.json)");

@@ -522,7 +522,7 @@ Action make_render(CLI::App& root) {
       "render", "the main job: probes updated and views rasterized per frame, written to --out");
   add_frame_options(cmd, *a);
   add_probe_options(*cmd, a->probe);
-  add_visibility_option(*cmd, a->probe);
+  add_visibility_options(*cmd, a->probe);
   add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
   add_warmup_options(*cmd, a->warmup);

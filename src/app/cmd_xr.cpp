@@ -261,7 +261,7 @@ Action make_xr(CLI::App& root) {
   cmd->add_option("--curve-secret", a->stream.curve_secret, "with --connect: this client's secret key (.key)")
       ->check(CLI::ExistingFile);
   add_probe_options(*cmd, a->probe);
-  add_visibility_option(*cmd, a->probe);
+  add_visibility_options(*cmd, a->probe);
   add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
   cmd->get_option("--budget-ms")

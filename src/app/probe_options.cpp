@@ -26,12 +26,16 @@ void add_probe_options(CLI::App& cmd, ProbeArgs& a) {
   cmd.add_option("--seed", a.seed, "random seed")->capture_default_str();
 }
 
-void add_visibility_option(CLI::App& cmd, ProbeArgs& a) {
+void add_visibility_options(CLI::App& cmd, ProbeArgs& a) {
   cmd.add_option("--probe-visibility", a.visibility,
                  "R: an R x R octahedral map of distance moments per probe, gathered from the "
                  "probe rays, for visibility-aware interpolation (no light through walls); 0: off. "
                  "With the CPU tracer only (the Vulkan tracer interpolates without)")
       ->capture_default_str();
+  cmd.add_flag("--probe-relocation", a.relocate,
+               "move a probe found inside geometry, or nearer than a tenth of a cell to a surface, "
+               "within 0.45 of its cell before classifying it (the probe traces again from there "
+               "once). CPU tracer only");
 }
 
 probes::ProbeVolume local_volume(const ProbeArgs& a, const probes::ProbeGrid& grid, bool gpu_tracer) {
@@ -104,6 +108,7 @@ probes::UpdateOptions update_options(const ProbeArgs& a) {
   options.samples = static_cast<std::uint32_t>(a.samples);
   options.hysteresis = a.hysteresis;
   options.seed = a.seed;
+  options.relocate = a.relocate;
   return options;
 }
 

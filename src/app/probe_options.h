@@ -45,13 +45,15 @@ struct ProbeArgs {
   int sh_order = probes::kDefaultShOrder;
   std::uint64_t seed = 1;
   int visibility = kDefaultProbeVisibility;  // moment map resolution; 0: no visibility
+  bool relocate = false;                     // --probe-relocation
 };
 
 // Registers --grid, --probe-spacing, --probe-samples, --bounces, --hysteresis, --sh-order and
 // --seed on cmd, writing into args (which must outlive the parse).
 void add_probe_options(CLI::App& cmd, ProbeArgs& args);
-// Registers --probe-visibility, for the commands that rasterize an in-process volume.
-void add_visibility_option(CLI::App& cmd, ProbeArgs& args);
+// Registers --probe-visibility and --probe-relocation, for the commands that trace a volume in
+// process and rasterize or write it.
+void add_visibility_options(CLI::App& cmd, ProbeArgs& args);
 
 // Throws std::invalid_argument with a one-line message for an impossible combination or value.
 void check_probe_options(const ProbeArgs& args);

@@ -31,6 +31,15 @@ ProbeVolume::ProbeVolume(const ProbeGrid& grid, int sh_order, int moment_resolut
   coeffs_.assign(std::size_t(grid.probe_count()) * std::size_t(coeff_count_), glm::vec3(0.0f));
   states_.assign(grid.probe_count(), ProbeState{});
   moments_.assign(std::size_t(grid.probe_count()) * std::size_t(moment_texels()), glm::vec2(1.0f));
+  offsets_.assign(grid.probe_count(), glm::vec3(0.0f));
+}
+
+void ProbeVolume::set_offset(std::uint32_t i, const glm::vec3& offset) {
+  const glm::vec3 bound = kMaxRelocation * grid_.spacing();
+  glm::vec3 o = glm::clamp(offset, -bound, bound);
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(o[a])) o[a] = 0.0f;
+  offsets_[i] = o;
 }
 
 sh::ShRgb ProbeVolume::sh(std::uint32_t i) const {
@@ -97,6 +106,7 @@ void ProbeVolume::reset_classification() {
       const std::uint32_t age = s.age;
       s = ProbeState{};  // a fresh probe: zero average (deactivate zeroed it), unclassified
       s.age = age;
+      offsets_[std::size_t(&s - states_.data())] = glm::vec3(0.0f);  // relocated afresh
     }
   }
 }

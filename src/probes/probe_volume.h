@@ -20,6 +20,9 @@
 namespace ddish::probes {
 
 inline constexpr int kDefaultShOrder = 2;
+// A relocated probe stays within this fraction of a cell of its grid position on every axis
+// (DDGI's 0.45): it never leaves its cell, so the interpolation's cell structure holds.
+inline constexpr float kMaxRelocation = 0.45f;
 
 // Per-probe flags (a bit set, stored as one byte in volume files).
 enum ProbeFlag : std::uint8_t {
@@ -82,6 +85,12 @@ class ProbeVolume {
     return {moments_.data() + std::size_t(i) * std::size_t(moment_texels()), std::size_t(moment_texels())};
   }
 
+  // Relocation: probe i's offset from its grid position (zero unless relocated), and where it
+  // traces from. set_offset clamps each axis to kMaxRelocation cells.
+  const glm::vec3& offset(std::uint32_t i) const { return offsets_[i]; }
+  void set_offset(std::uint32_t i, const glm::vec3& offset);
+  glm::vec3 position(std::uint32_t i) const { return grid_.position(i) + offsets_[i]; }
+
   const ProbeState& state(std::uint32_t i) const { return states_[i]; }
   ProbeState& state(std::uint32_t i) { return states_[i]; }
 
@@ -129,6 +138,7 @@ class ProbeVolume {
   int moment_res_ = 0;
   float moment_range_ = 1.0f;
   std::vector<glm::vec2> moments_;
+  std::vector<glm::vec3> offsets_;
   std::uint64_t frame_ = 0;
 };
 

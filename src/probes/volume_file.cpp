@@ -102,6 +102,10 @@ void write_volume_file(const std::string& path, const ProbeVolume& volume,
       moments.push_back(std::uint32_t(sh::float_to_half(m.x)) |
                         (std::uint32_t(sh::float_to_half(m.y)) << 16));
   bytes.append(reinterpret_cast<const char*>(moments.data()), moments.size() * 4);
+  std::vector<float> offsets;
+  for (std::uint32_t i = 0; i < volume.probe_count(); ++i)
+    for (int a = 0; a < 3; ++a) offsets.push_back(volume.offset(i)[a]);
+  bytes.append(reinterpret_cast<const char*>(offsets.data()), offsets.size() * 4);
   io::write_file_atomically(path, bytes);
   io::write_file_atomically(path + ".json", summary(volume, packed).dump(2) + '\n');
 }
@@ -151,7 +155,7 @@ VolumeFile read_volume_file(const std::string& path) {
       fail(path, "moment map resolution " + std::to_string(res) + " (at most " +
                      std::to_string(kMaxMomentResolution) + ")");
     file.moment_resolution = int(res);
-    expected += 4 + std::size_t(file.grid.probe_count()) * res * res * 4u;
+    expected += 4 + std::size_t(file.grid.probe_count()) * (res * res * 4u + 12u);
   }
   if (bytes.size() != expected)
     fail(path, "size " + std::to_string(bytes.size()) + " bytes, expected " +
@@ -170,6 +174,11 @@ VolumeFile read_volume_file(const std::string& path) {
     std::memcpy(file.moments.data(), bytes.data() + kVolumeHeaderBytes + payload + 4,
                 file.moments.size() * 4);
   }
+  if (version >= 2) {
+    file.offsets.resize(std::size_t(file.grid.probe_count()) * 3);
+    std::memcpy(file.offsets.data(), bytes.data() + kVolumeHeaderBytes + payload + 4 + file.moments.size() * 4,
+                file.offsets.size() * 4);
+  }
   for (std::uint32_t i = 0; i < file.grid.probe_count(); ++i)
     (sh::packed_format(p.probe(i), p.sh_order) == sh::PackFormat::kHalf ? p.half_probes
                                                                         : p.shared_exp_probes) += 1;
@@ -183,6 +192,8 @@ ProbeVolume VolumeFile::to_volume() const {
   for (std::uint32_t i = 0; i < grid.probe_count(); ++i) {
     volume.set_sh(i, unpack_probe(packed, i));
     volume.state(i).flags = unpack_flags(packed, i);
+    if (!offsets.empty())  // untrusted: set_offset clamps to the cell and zeroes NaN
+      volume.set_offset(i, {offsets[3 * i], offsets[3 * i + 1], offsets[3 * i + 2]});
     std::span<glm::vec2> m = volume.moments(i);
     for (std::size_t t = 0; t < texels; ++t) {
       const std::uint32_t v = moments[i * texels + t];

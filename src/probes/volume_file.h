@@ -20,8 +20,10 @@
 //        -     -  probes × R² u32 moment texels in grid index order, moment_map.h's octahedral
 //                 texel order, each half(mean d) | half(mean d²) << 16 over the volume's moment
 //                 range (ProbeVolume::moment_range)                               [version 2]
-// A version 1 file is exactly 64 + probes × words × 2 bytes, a version 2 file 4 + probes × R² × 4
-// more; readers reject anything else. Probe positions follow from counts and bounds
+//        -     -  probes × 3 f32 relocation offsets, metres from the grid position (each axis
+//                 clamped to ProbeVolume's kMaxRelocation cells when read)        [version 2]
+// A version 1 file is exactly 64 + probes × words × 2 bytes, a version 2 file
+// 4 + probes × (R² × 4 + 12) more; readers reject anything else. Probe positions follow from counts and bounds
 // (probe_grid.h: cell centres, inset half a cell).
 #pragma once
 
@@ -45,8 +47,9 @@ struct VolumeFile {
   PackedVolume packed;
   int moment_resolution = 0;            // 0: no moments (every version 1 file)
   std::vector<std::uint32_t> moments;   // probes × R² packed texels
+  std::vector<float> offsets;           // probes × 3 (version 2); empty: none
 
-  // The probe volume it holds: unpacked coefficients, flags and moments. Per-probe update counts are
+  // The probe volume it holds: unpacked coefficients, flags, moments and offsets. Per-probe update counts are
   // not stored, so the volume's first update after loading replaces a probe's average
   // (weight 1/1) unless the caller sets ProbeState::updates.
   ProbeVolume to_volume() const;

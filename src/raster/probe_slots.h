@@ -32,8 +32,8 @@ struct SlotClamps {
 void pack_probe_slots(const probes::ProbeVolume& volume, std::uint32_t probe, int order,
                       std::span<std::uint16_t> out, SlotClamps& clamps);
 
-// Writes probe `probe`'s moment map for the GPU (volume.moment_texels() uints): each texel as
-// half(mean d) | half(mean d^2) << 16.
+// Writes probe `probe`'s visibility record for the GPU (volume.moment_texels() + 3 uints): each
+// moment texel as half(mean d) | half(mean d^2) << 16, then its relocation offset as 3 floats.
 void pack_probe_moments(const probes::ProbeVolume& volume, std::uint32_t probe,
                         std::span<std::uint32_t> out, SlotClamps& clamps);
 

@@ -83,11 +83,11 @@ ProbeTextures::ProbeTextures(const gpu::Device& device, const probes::ProbeVolum
   uniform_.cell_size = glm::vec4(spacing, 0.0f);
   moment_res_ = volume.moment_resolution();
   if (moment_res_ > 0) {
-    moment_texels_ = std::uint32_t(volume.moment_texels());
+    record_uints_ = std::uint32_t(volume.moment_texels()) + 3;  // the map, then the offset
     float min_cell = 0.0f;
     for (int a = 0; a < 3; ++a)
       if (spacing[a] > 0.0f) min_cell = min_cell > 0.0f ? std::min(min_cell, spacing[a]) : spacing[a];
-    uniform_.visibility = glm::vec4(float(moment_res_), float(moment_texels_),
+    uniform_.visibility = glm::vec4(float(moment_res_), float(record_uints_),
                                     volume.moment_range(), kVisibilityBiasCells * min_cell);
   }
 
@@ -122,7 +122,7 @@ ProbeTextures::ProbeTextures(const gpu::Device& device, const probes::ProbeVolum
     textures_.push_back(std::move(tex));
   }
 
-  const VkDeviceSize moment_bytes = 4ull * moment_texels_ * grid_.probe_count();
+  const VkDeviceSize moment_bytes = 4ull * record_uints_ * grid_.probe_count();
   staging_ = gpu::Buffer(device, kTexelBytes * n_textures * grid_.probe_count() + moment_bytes, 0,
                          gpu::MemoryUse::upload);
   moments_ = gpu::Buffer(device, moment_bytes > 0 ? moment_bytes : 16,
@@ -220,14 +220,14 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
   const VkDeviceSize texel_bytes = kTexelBytes * n_tex * n;
   stats.bytes = texel_bytes;
   staging_.write(texels_.data(), texel_bytes);
-  if (moment_texels_ > 0) {
+  if (record_uints_ > 0) {
     // Moment maps of the listed probes after the texels, in list order: one copy per run.
-    moment_scratch_.resize(std::size_t(moment_texels_) * n);
+    moment_scratch_.resize(std::size_t(record_uints_) * n);
     k = 0;
     for (const ProbeRun& r : runs)
       for (std::uint32_t p = r.first; p < r.first + r.count; ++p, ++k)
         pack_probe_moments(volume, p,
-                           std::span(moment_scratch_).subspan(k * moment_texels_, moment_texels_),
+                           std::span(moment_scratch_).subspan(k * record_uints_, record_uints_),
                            stats.clamps);
     const VkDeviceSize bytes = 4ull * moment_scratch_.size();
     staging_.write(moment_scratch_.data(), bytes, texel_bytes);
@@ -243,8 +243,8 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
     std::vector<VkBufferCopy> copies;
     VkDeviceSize src = texel_bytes;
     for (const ProbeRun& r : runs) {
-      const VkDeviceSize size = 4ull * moment_texels_ * r.count;
-      copies.push_back({src, 4ull * moment_texels_ * r.first, size});
+      const VkDeviceSize size = 4ull * record_uints_ * r.count;
+      copies.push_back({src, 4ull * record_uints_ * r.first, size});
       src += size;
     }
     vkCmdCopyBuffer(cmd, staging_.handle(), moments_.handle(), std::uint32_t(copies.size()),

@@ -9,9 +9,9 @@
 // been updated yet counts, with zero radiance): 7 textures (56 bytes a probe) at L2. Values beyond fp16 are saturated to +-65504 and counted, never stored as Inf.
 //
 // A volume with distance moments (probes/moment_map.h) also gets its moment maps in a storage
-// buffer (probe i's R x R texels at i * R^2, each the uint of two halves: mean d and mean d^2
-// over the range, low half first), which the shader's visibility weights read, one texel per
-// probe.
+// buffer: probe i's record at i * (R^2 + 3) uints, its R x R texels (each two halves, mean d and
+// mean d^2 over the range, low half first) then its relocation offset (3 floats, metres), which
+// the shader's visibility weights read.
 //
 // Descriptor set, layout(): binding 0 uniform buffer ProbeGridUniform (std140), binding 1 an
 // array of texture_count() combined image samplers (sampler3D probe_sh[]), binding 2 the moment
@@ -47,7 +47,7 @@ struct ProbeGridUniform {
   glm::vec4 counts{1.0f};       // xyz: probes per axis; w: texture count
   glm::vec4 bounds_min{0.0f};   // xyz: the volume's bounds
   glm::vec4 cell_size{0.0f};    // xyz: distance between neighbouring probes
-  // x: moment map resolution R (0: none, trilinear textures only); y: R * R;
+  // x: moment map resolution R (0: none, trilinear textures only); y: record stride R * R + 3;
   // z: the volume's moment range; w: the distance the visibility test moves the shaded point.
   glm::vec4 visibility{0.0f};
 };
@@ -135,7 +135,7 @@ class ProbeTextures {
   gpu::Buffer grid_buffer_;
   gpu::Buffer moments_;  // the moment maps, or a placeholder
   int moment_res_ = 0;
-  std::uint32_t moment_texels_ = 0;  // per probe; 0 without moments
+  std::uint32_t record_uints_ = 0;  // uints per probe record (map and offset); 0 without moments
   std::vector<std::uint32_t> moment_scratch_;
   Sampler sampler_;
   OwnedDescriptorSet descriptors_;

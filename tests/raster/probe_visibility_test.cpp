@@ -23,7 +23,7 @@ float as_half(float v) { return sh::half_to_float(sh::float_to_half(v)); }
 // them (fp16).
 double visibility_weight(const probes::ProbeVolume& v, std::uint32_t i, const glm::vec3& p,
                          const glm::vec3& n, double trilinear) {
-  const glm::vec3 probe = v.grid().position(i);
+  const glm::vec3 probe = v.position(i);  // relocated
   const glm::vec3 to_probe = glm::normalize(probe - p);
   double w = (double(glm::dot(to_probe, n)) + 1.0) * 0.5;
   w = w * w + 0.2;
@@ -62,6 +62,7 @@ TEST_F(ProbeVisibilityTest, ChebyshevWeightsOfKnownMomentsMatchTheFormula) {
   for (glm::vec2& t : v.moments(0)) t = {0.1f, 0.1f * 0.1f + 0.05f * 0.05f};
   for (glm::vec2& t : v.moments(3)) t = {0.3f, 0.3f * 0.3f + 0.1f * 0.1f};
   v.deactivate(6, false);  // inactive: weighted out whatever its moments
+  v.set_offset(3, {0.1f, -0.2f, 0.05f});  // relocated: its distances are measured from there
 
   const std::vector<glm::vec3> points = {{0.9f, 1.1f, 0.7f}, {0.6f, 0.6f, 0.6f}, {1.4f, 0.55f, 1.2f}};
   const std::vector<glm::vec3> normals = {glm::normalize(glm::vec3(0.3f, 0.8f, -0.5f)),
@@ -69,7 +70,7 @@ TEST_F(ProbeVisibilityTest, ChebyshevWeightsOfKnownMomentsMatchTheFormula) {
                                           glm::normalize(glm::vec3(0.0f, -1.0f, 1.0f))};
   {
     const glm::vec3 p = points[2];
-    const glm::vec3 from = p + kVisibilityBiasCells * normals[2] - v.grid().position(5u);
+    const glm::vec3 from = p + kVisibilityBiasCells * normals[2] - v.position(5u);
     v.moments(5)[probes::moment_texel(glm::normalize(from), 4)] = {0.05f, 0.05f * 0.05f + 1e-4f};
   }
   std::vector<Query> queries;
