@@ -8,6 +8,12 @@
 //                [--method per-view|multiview|layered] [--cull on|off|both] [--only-view K]
 //                [--per-chunk] [--shading full|trivial|both] [--anisotropy N]
 //                [--prepass auto|on|off|both]
+//                [--probe-visibility R]
+//
+// --probe-visibility R gives the volume R x R distance-moment maps (0, the default: none), so the
+// full shader takes the visibility-aware interpolation (shaders/include/probe_lighting.glsl); the
+// moments are set to a wall at a fifth of the range with some spread, so that the Chebyshev term
+// is evaluated rather than skipped.
 //
 // --shading trivial draws the same triangles with the same vertex shader, depth test, MSAA,
 // passes and target but a constant-colour fragment shader (raster/shading.h): the vertex +
@@ -104,6 +110,7 @@ int main(int argc, char** argv) try {
   int anisotropy = 0;
   int only_view = -1;
   std::string prepass_choice = "auto";
+  int visibility = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -122,6 +129,7 @@ int main(int argc, char** argv) try {
     else if (a == "--shading") shading_choice = next();
     else if (a == "--anisotropy") anisotropy = std::stoi(next());
     else if (a == "--prepass") prepass_choice = next();
+    else if (a == "--probe-visibility") visibility = std::stoi(next());
     else path = a;
   }
   if (!only_method.empty() && !raster::parse_view_method(only_method))
@@ -142,7 +150,9 @@ int main(int argc, char** argv) try {
   const scene::Scene s = scene::load_scene(path);
   gpu::Context context({.application_name = "raster_views"});
   gpu::Device& device = context.device();
-  const probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {4, 4, 4}), 2);
+  probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {4, 4, 4}), 2, visibility);
+  for (std::uint32_t i = 0; i < volume.probe_count(); ++i)
+    for (glm::vec2& m : volume.moments(i)) m = {0.2f, 0.05f};
   std::printf("# %s, %zu mesh triangles (before instancing), %dx%d, device %s, %d frames (median), "
               "anisotropy option %d\n", path.c_str(),
               [&] { std::size_t t = 0; for (const auto& m : s.meshes) t += m.triangle_count(); return t; }(),

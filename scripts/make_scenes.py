@@ -374,6 +374,37 @@ def two_rooms(out_dir):
                       "camera": "Camera"})
 
 
+def thin_wall(out_dir):
+    """Issue 19's leak test: room A (x in [-3, 0]) lit by an emissive ceiling panel and room B
+    (x in [0.05, 3.05]) with no light, on either side of a closed 0.05 m wall with no opening, far
+    thinner than the 0.5 m probe cells; 2.5 m high, z in [-1.5, 1.5]. No light can reach room B,
+    so everything the rasterizer shows there is light leaked through the wall by the probes."""
+    g = Gltf("thin_wall")
+    white = g.material("White", WHITE)
+    rooms, slab = Part(white), Part(white)
+    H, Z, T = 2.5, 1.5, 0.05
+    for x0, x1 in ((-3.0, 0.0), (T, 3.0 + T)):
+        rooms.rect(1, 0.0, 1, (x0, -Z), (x1, Z))   # floor
+        rooms.rect(1, H, -1, (x0, -Z), (x1, Z))    # ceiling
+        rooms.rect(2, -Z, 1, (x0, 0), (x1, H))     # back
+        rooms.rect(2, Z, -1, (x0, 0), (x1, H))     # front
+    rooms.rect(0, -3.0, 1, (0, -Z), (H, Z))        # room A's far wall
+    rooms.rect(0, 3.0 + T, -1, (0, -Z), (H, Z))    # room B's far wall
+    # The dividing wall: a closed slab, all faces outwards.
+    slab.rect(0, 0.0, -1, (0, -Z), (H, Z))
+    slab.rect(0, T, 1, (0, -Z), (H, Z))
+    slab.rect(1, H, 1, (0, -Z), (T, Z))
+    slab.rect(1, 0.0, -1, (0, -Z), (T, Z))
+    slab.rect(2, -Z, -1, (0, 0), (T, H))
+    slab.rect(2, Z, 1, (0, 0), (T, H))
+    lamp = Part(g.material("Light", [0.78, 0.78, 0.78, 1.0], emissive=[1.0, 0.85, 0.65], strength=15.0))
+    lamp.rect(1, H - 0.001, -1, (-2.0, -0.5), (-1.0, 0.5))
+    g.node({"name": "Rooms", "mesh": g.mesh("Rooms", [rooms, slab, lamp])})
+    g.camera("Camera", [2.9, 1.3, 1.3], [0.0, 1.0, -0.4], math.radians(60.0))
+    g.write(out_dir, {"light_units": "radiometric", "environment": {"radiance": [0, 0, 0]},
+                      "probe_grid": {"counts": [12, 5, 6]}, "camera": "Camera"})
+
+
 def uv_sphere(material, radius, segments=32, rings=16):
     """A sphere around the origin, front faces outwards: `segments` around +Y, `rings` pole to
     pole, smooth normals."""
@@ -529,7 +560,7 @@ def main():
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
     import feature_scenes  # the glTF feature scenes of issue 18 (they import this module)
-    for make in (cornell_box, cornell_spot, two_rooms, cornell_animated, cornell_light, open_sphere,
+    for make in (cornell_box, cornell_spot, two_rooms, thin_wall, cornell_animated, cornell_light, open_sphere,
                  photometric_lamp, instanced_boxes, unlit_panel, clamped_texture) + feature_scenes.SCENES:
         make(out_dir)
 

@@ -230,7 +230,7 @@ vec3 lighting(vec3 n, vec3 albedo, float metallic, float roughness, float normal
     const vec3 diffuse_scale = 1.0 - e_v;
     // One interpolation of the probes for both terms.
     vec3 sh[PROBE_SH_COEFFS];
-    if (probe_interpolate(in_world, sh)) {
+    if (probe_interpolate(in_world, n, v, sh)) {
       color += albedo * (1.0 - metallic) * diffuse_scale / kPi * probe_sh_irradiance(sh, n) * occlusion;
       if (kSpecularProbes) {
         // The split sum of f0 + f90_minus_f0 w: f0 (dfg.x + dfg.y) + f90_minus_f0 dfg.y, which

@@ -26,6 +26,7 @@ const uint kGgxZh = 3u;
 const uint kInterpolatedL0 = 4u;  // the interpolated band-0 coefficient and the weight flag
 const uint kLightingIrradiance = 5u;  // probe_lighting's two outputs
 const uint kLightingSpecular = 6u;
+const uint kVisibleL0 = 7u;  // as kInterpolatedL0, with normal b.xyz and the viewer along it
 
 void main() {
   const uint i = gl_GlobalInvocationID.x;
@@ -43,7 +44,11 @@ void main() {
     r = brdf_ggx_zh(q.a.w);
   } else if (kind == kInterpolatedL0) {
     vec3 sh[PROBE_SH_COEFFS];
-    r.w = probe_interpolate(q.a.xyz, sh) ? 1.0 : 0.0;
+    r.w = probe_interpolate(q.a.xyz, vec3(0.0, 0.0, 1.0), vec3(0.0, 0.0, 1.0), sh) ? 1.0 : 0.0;
+    r.xyz = sh[0];
+  } else if (kind == kVisibleL0) {
+    vec3 sh[PROBE_SH_COEFFS];
+    r.w = probe_interpolate(q.a.xyz, q.b.xyz, q.b.xyz, sh) ? 1.0 : 0.0;
     r.xyz = sh[0];
   } else if (kind == kLightingIrradiance || kind == kLightingSpecular) {
     // a.xyz position, b.xyz reflected direction, normal = the reflected direction mirrored in z.

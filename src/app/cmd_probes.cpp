@@ -7,6 +7,7 @@
 // encoding; with --out it writes the volume (probes/volume_file.h) and PATH.json beside it.
 // Placement: --grid counts or --probe-spacing over the sidecar's probe_bounds (else the scene's
 // bounds); without either, the sidecar's probe counts; without those, automatic placement.
+#include <filesystem>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -76,7 +77,7 @@ int run_probes(const ProbesArgs& a) {
              grid.counts().x, grid.counts().y, grid.counts().z, grid.probe_count(),
              placement.how, grid.spacing().x, grid.spacing().y, grid.spacing().z, a.probe.sh_order);
 
-  probes::ProbeVolume volume(grid, a.probe.sh_order);
+  probes::ProbeVolume volume = local_volume(a.probe, grid, decision.kind == TracerKind::vulkan);
   const std::uint32_t left_out = leave_out_empty_probes(volume, s);
   const probes::ProbeUpdater& probe_tracer = engine.updater();
 
@@ -112,7 +113,7 @@ int run_probes(const ProbesArgs& a) {
   if (!a.out.empty()) {
     probes::write_volume_file(a.out, volume, packed);
     fmt::print("written  {} ({} bytes) and {}.json\n", a.out,
-               probes::kVolumeHeaderBytes + packed.bytes(), a.out);
+               std::filesystem::file_size(a.out), a.out);
   }
   return 0;
 }
@@ -123,6 +124,7 @@ Action make_probes(CLI::App& root) {
       root.add_subcommand("probes", "update a probe volume and write it (debugging, baking)");
   cmd->add_option("scene", a->scene, "glTF 2.0 scene (.gltf or .glb)")->required();
   add_probe_options(*cmd, a->probe);
+  add_visibility_options(*cmd, a->probe);
   add_lighting_options(*cmd, a->lighting, /*exposure=*/false);
   cmd->add_option("--updates", a->updates, "probe updates to run")->capture_default_str();
   cmd->add_option("--out", a->out, "write the volume here (and a JSON summary at PATH.json)");

@@ -216,7 +216,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   }
   const bool gpu_tracer = tracer && tracer->kind == TracerKind::vulkan;
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.baked, placement)
-                                      : probes::ProbeVolume(placement.grid, a.probe.sh_order);
+                                      : local_volume(a.probe, placement.grid, gpu_tracer);
   const std::uint32_t empty_probes = remote ? 0 : leave_out_empty_probes(volume, s);
 
   GpuRun run;
@@ -530,6 +530,7 @@ Action make_render(CLI::App& root) {
       "render", "the main job: probes updated and views rasterized per frame, written to --out");
   add_frame_options(cmd, *a);
   add_probe_options(*cmd, a->probe);
+  add_visibility_options(*cmd, a->probe);
   add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
   add_warmup_options(*cmd, a->warmup);

@@ -121,7 +121,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
     local = make_in_process(a.probe, a.schedule, s, a.schedule.budget_ms.value_or(0.0), TracerKind::embree,
                             std::nullopt);
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream.baked, placement)
-                                      : probes::ProbeVolume(placement.grid, a.probe.sh_order);
+                                      : local_volume(a.probe, placement.grid, false);
   if (!remote) {
     const std::uint32_t n = leave_out_empty_probes(volume, s);
     if (n > 0) {
@@ -261,6 +261,7 @@ Action make_xr(CLI::App& root) {
   cmd->add_option("--curve-secret", a->stream.curve_secret, "with --connect: this client's secret key (.key)")
       ->check(CLI::ExistingFile);
   add_probe_options(*cmd, a->probe);
+  add_visibility_options(*cmd, a->probe);
   add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
   cmd->get_option("--budget-ms")

@@ -26,6 +26,22 @@ void add_probe_options(CLI::App& cmd, ProbeArgs& a) {
   cmd.add_option("--seed", a.seed, "random seed")->capture_default_str();
 }
 
+void add_visibility_options(CLI::App& cmd, ProbeArgs& a) {
+  cmd.add_option("--probe-visibility", a.visibility,
+                 "R: an R x R octahedral map of distance moments per probe, gathered from the "
+                 "probe rays, for visibility-aware interpolation (no light through walls); 0: off. "
+                 "With the CPU tracer only (the Vulkan tracer interpolates without)")
+      ->capture_default_str();
+  cmd.add_flag("--probe-relocation", a.relocate,
+               "move a probe found inside geometry, or nearer than a tenth of a cell to a surface, "
+               "within 0.45 of its cell before classifying it (the probe traces again from there "
+               "once). CPU tracer only");
+}
+
+probes::ProbeVolume local_volume(const ProbeArgs& a, const probes::ProbeGrid& grid, bool gpu_tracer) {
+  return probes::ProbeVolume(grid, a.sh_order, gpu_tracer ? 0 : a.visibility);
+}
+
 glm::ivec3 parse_grid(const std::string& text) {
   std::stringstream ss(text);
   glm::ivec3 c(0);
@@ -50,6 +66,9 @@ void check_probe_options(const ProbeArgs& a) {
   if (a.bounces < 0) throw std::invalid_argument("--bounces must be 0 or more");
   if (!(a.hysteresis >= 0.0f && a.hysteresis < 1.0f))
     throw std::invalid_argument(fmt::format("--hysteresis must be in [0, 1), got {:g}", a.hysteresis));
+  if (a.visibility < 0 || a.visibility > probes::kMaxMomentResolution)
+    throw std::invalid_argument(fmt::format("--probe-visibility must be 0 (off) .. {}, got {}",
+                                            probes::kMaxMomentResolution, a.visibility));
   if (a.sh_order < 1 || a.sh_order > 4)
     throw std::invalid_argument(fmt::format("--sh-order must be 1, 2, 3 or 4, got {}", a.sh_order));
 }
@@ -89,6 +108,7 @@ probes::UpdateOptions update_options(const ProbeArgs& a) {
   options.samples = static_cast<std::uint32_t>(a.samples);
   options.hysteresis = a.hysteresis;
   options.seed = a.seed;
+  options.relocate = a.relocate;
   return options;
 }
 

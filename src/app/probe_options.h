@@ -32,6 +32,10 @@ namespace ddish::app {
 // roulette (from the 3rd bounce) ends most long paths early.
 inline constexpr int kDefaultProbeBounces = 15;
 
+// --probe-visibility: R of the R x R distance-moment map per probe (probes/moment_map.h), 0 to
+// interpolate without visibility. docs/probe-visibility.md has the measurements behind it.
+inline constexpr int kDefaultProbeVisibility = 8;
+
 struct ProbeArgs {
   std::string grid;  // "X,Y,Z", "auto", or empty (sidecar counts, else automatic)
   std::optional<float> spacing;
@@ -40,14 +44,24 @@ struct ProbeArgs {
   float hysteresis = probes::kDefaultHysteresis;
   int sh_order = probes::kDefaultShOrder;
   std::uint64_t seed = 1;
+  int visibility = kDefaultProbeVisibility;  // moment map resolution; 0: no visibility
+  bool relocate = false;                     // --probe-relocation
 };
 
 // Registers --grid, --probe-spacing, --probe-samples, --bounces, --hysteresis, --sh-order and
 // --seed on cmd, writing into args (which must outlive the parse).
 void add_probe_options(CLI::App& cmd, ProbeArgs& args);
+// Registers --probe-visibility and --probe-relocation, for the commands that trace a volume in
+// process and rasterize or write it.
+void add_visibility_options(CLI::App& cmd, ProbeArgs& args);
 
 // Throws std::invalid_argument with a one-line message for an impossible combination or value.
 void check_probe_options(const ProbeArgs& args);
+
+// The volume an in-process probe update fills: with moment maps of --probe-visibility when the
+// CPU tracer updates it, without when the Vulkan tracer does (it gathers no distances yet, and a
+// volume without moments is interpolated without visibility).
+probes::ProbeVolume local_volume(const ProbeArgs& args, const probes::ProbeGrid& grid, bool gpu_tracer);
 
 // "X,Y,Z" -> three positive counts; throws std::invalid_argument otherwise.
 glm::ivec3 parse_grid(const std::string& text);

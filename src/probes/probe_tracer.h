@@ -1,11 +1,13 @@
 // The probe update: for every active probe, N paths from the probe position in the directions of
 // a randomly rotated spherical Fibonacci lattice, their radiance projected onto SH (weight 4π/N
 // per path) and blended into the probe's fp32 running average. A probe's first update also
-// classifies it (classification.h). Parallel over probes with TBB; every probe draws from its own
+// classifies it (classification.h). When the volume keeps distance moments (moment_map.h), the
+// same rays' first-hit distances feed them: no extra rays. Parallel over probes with TBB; every probe draws from its own
 // Sampler stream (seed, probe index, volume update number), so the coefficients depend on the
 // seed and the sequence of updates only, never on how threads split the work.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 
@@ -36,7 +38,28 @@ struct UpdateOptions {
   float backface_threshold = kInsideBackfaceFraction;
   BlendRule blend = BlendRule::per_update;  // how an update is weighed into the average
   std::uint32_t reference_samples = 0;      // S of the per-sample rule; 0: samples
+  // Relocation at classification: a probe found inside geometry moves through the nearest back
+  // face it saw, one nearer than kMinSurfaceCells cells to a front face moves away from it, both
+  // within kMaxRelocation cells of its grid position; the probe then traces again from there
+  // (once, in the same update) and is classified by those rays.
+  bool relocate = false;
 };
+
+// Relocation keeps a probe this many of the smallest cell sizes off the surfaces it sees.
+inline constexpr float kMinSurfaceCells = 0.1f;
+
+// The nearest first hits of one probe's rays (front and back faces apart), for relocation.
+struct NearestHits {
+  float back = HUGE_VALF;
+  glm::vec3 back_dir{0.0f};
+  float front = HUGE_VALF;
+  glm::vec3 front_dir{0.0f};
+};
+
+// Where relocation moves probe i of `volume` given its nearest hits and its classification:
+// the new offset (clamped as ProbeVolume::set_offset does), or the old one when it stays.
+glm::vec3 relocated_offset(const ProbeVolume& volume, std::uint32_t i, const NearestHits& hits,
+                           bool inside_geometry);
 
 // Throws std::invalid_argument for samples == 0, hysteresis outside [0, 1) or a threshold
 // outside [0, 1].
@@ -70,9 +93,11 @@ class ProbeTracer final : public ProbeUpdater {
 
   // The SH projection of one probe's rays for the volume's update number `frame`, without
   // touching the volume (the estimate has the volume's order). Returns the number of back-face
-  // first hits; adds the paths dropped for non-finite radiance to *invalid when given.
+  // first hits; adds the paths dropped for non-finite radiance to *invalid when given; bins the
+  // rays' first-hit distances into *moments when given (cleared first; the volume's range).
   std::uint32_t trace_probe(const ProbeVolume& volume, std::uint32_t probe, std::uint64_t frame,
-                            sh::ShRgb& estimate, std::uint64_t* invalid = nullptr) const;
+                            sh::ShRgb& estimate, std::uint64_t* invalid = nullptr,
+                            MomentEstimate* moments = nullptr, NearestHits* nearest = nullptr) const;
 
  private:
   const RadianceSource& source_;

@@ -1,6 +1,9 @@
 // A probe volume: the grid layout plus, for every probe, its SH coefficients (the fp32 running
 // average of the radiance arriving at the probe, RGB, orders L1..L4) and the state the probe
 // tracer and the scheduler need (updates and samples received, age, active / inside-geometry).
+// Optionally, per-probe distance moments (moment_map.h) blended with the same weights as the SH,
+// for visibility-aware interpolation; a volume without them (moment resolution 0) is
+// interpolated trilinearly, as before they existed.
 #pragma once
 
 #include <cstdint>
@@ -10,12 +13,16 @@
 #include <glm/glm.hpp>
 
 #include "probes/accumulation.h"
+#include "probes/moment_map.h"
 #include "probes/probe_grid.h"
 #include "sh/sh_rgb.h"
 
 namespace ddish::probes {
 
 inline constexpr int kDefaultShOrder = 2;
+// A relocated probe stays within this fraction of a cell of its grid position on every axis
+// (DDGI's 0.45): it never leaves its cell, so the interpolation's cell structure holds.
+inline constexpr float kMaxRelocation = 0.45f;
 
 // Per-probe flags (a bit set, stored as one byte in volume files).
 enum ProbeFlag : std::uint8_t {
@@ -42,7 +49,9 @@ void check_sh_order(int order);
 class ProbeVolume {
  public:
   ProbeVolume() : ProbeVolume(ProbeGrid(), kDefaultShOrder) {}  // one probe at the origin
-  ProbeVolume(const ProbeGrid& grid, int sh_order = kDefaultShOrder);
+  // moment_resolution: R of the R x R distance-moment map per probe, 0 for none
+  // (std::invalid_argument outside 0..kMaxMomentResolution).
+  ProbeVolume(const ProbeGrid& grid, int sh_order = kDefaultShOrder, int moment_resolution = 0);
 
   const ProbeGrid& grid() const { return grid_; }
   int sh_order() const { return order_; }
@@ -61,6 +70,27 @@ class ProbeVolume {
   // All probes' coefficients, probe after probe in grid index order.
   std::span<const glm::vec3> all_coefficients() const { return coeffs_; }
 
+  // Distance moments: moment_texels() texels per probe, (mean d, mean d^2) / (range, range^2)
+  // (moment_map.h). A texel no ray has reached yet holds (1, 1): nothing within the range.
+  int moment_resolution() const { return moment_res_; }
+  bool has_moments() const { return moment_res_ > 0; }
+  int moment_texels() const { return moment_res_ * moment_res_; }
+  // Distances are clamped to this and stored divided by it: 1.5 cell diagonals (an interpolated
+  // point is at most one diagonal from each probe it reads, plus the shader's bias).
+  float moment_range() const { return moment_range_; }
+  std::span<glm::vec2> moments(std::uint32_t i) {
+    return {moments_.data() + std::size_t(i) * std::size_t(moment_texels()), std::size_t(moment_texels())};
+  }
+  std::span<const glm::vec2> moments(std::uint32_t i) const {
+    return {moments_.data() + std::size_t(i) * std::size_t(moment_texels()), std::size_t(moment_texels())};
+  }
+
+  // Relocation: probe i's offset from its grid position (zero unless relocated), and where it
+  // traces from. set_offset clamps each axis to kMaxRelocation cells.
+  const glm::vec3& offset(std::uint32_t i) const { return offsets_[i]; }
+  void set_offset(std::uint32_t i, const glm::vec3& offset);
+  glm::vec3 position(std::uint32_t i) const { return grid_.position(i) + offsets_[i]; }
+
   const ProbeState& state(std::uint32_t i) const { return states_[i]; }
   ProbeState& state(std::uint32_t i) { return states_[i]; }
 
@@ -72,11 +102,14 @@ class ProbeVolume {
   // (accumulation.h) and counts the update and its samples. Bands above the order are ignored.
   // rule and reference_samples choose the weight (accumulation.h); reference_samples 0 means
   // `samples` (the per-sample rule then equals the per-update rule at full samples).
+  // With `moments` (of the volume's moment resolution), each texel that rays reached blends
+  // their mean with the same weight; texels no ray reached keep their value.
   void accumulate(std::uint32_t i, const sh::ShRgb& estimate, std::uint64_t samples,
                   float hysteresis, BlendRule rule = BlendRule::per_update,
-                  std::uint32_t reference_samples = 0);
+                  std::uint32_t reference_samples = 0, const MomentEstimate* moments = nullptr);
 
-  // Marks probe i inactive (inside geometry or not) and zeroes its coefficients and counts, so
+  // Marks probe i inactive (inside geometry or not), zeroes its coefficients and counts and
+  // resets its moments, so
   // an interpolation that ignored the flag would still add nothing.
   void deactivate(std::uint32_t i, bool inside_geometry);
 
@@ -102,6 +135,10 @@ class ProbeVolume {
   int coeff_count_ = sh::coeff_count(kDefaultShOrder);
   std::vector<glm::vec3> coeffs_;
   std::vector<ProbeState> states_;
+  int moment_res_ = 0;
+  float moment_range_ = 1.0f;
+  std::vector<glm::vec2> moments_;
+  std::vector<glm::vec3> offsets_;
   std::uint64_t frame_ = 0;
 };
 

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.h"
+#include "sh/packing.h"
 
 namespace ddish::probes {
 
@@ -58,6 +59,7 @@ nlohmann::json summary(const ProbeVolume& volume, const PackedVolume& packed) {
   j["inactive"] = volume.inactive_count();
   j["inside_geometry"] = volume.inside_geometry_count();
   j["sh_order"] = volume.sh_order();
+  j["moment_resolution"] = volume.moment_resolution();
   j["encoding"] = encoding_name(packed.encoding);
   j["fp16_probes"] = packed.half_probes;
   j["shared_exponent_probes"] = packed.shared_exp_probes;
@@ -94,6 +96,16 @@ void write_volume_file(const std::string& path, const ProbeVolume& volume,
   // describes a volume that is not there.
   std::string bytes(header.begin(), header.end());
   bytes.append(reinterpret_cast<const char*>(packed.words.data()), packed.bytes());
+  std::vector<std::uint32_t> moments(1, std::uint32_t(volume.moment_resolution()));
+  for (std::uint32_t i = 0; i < volume.probe_count(); ++i)
+    for (const glm::vec2& m : volume.moments(i))
+      moments.push_back(std::uint32_t(sh::float_to_half(m.x)) |
+                        (std::uint32_t(sh::float_to_half(m.y)) << 16));
+  bytes.append(reinterpret_cast<const char*>(moments.data()), moments.size() * 4);
+  std::vector<float> offsets;
+  for (std::uint32_t i = 0; i < volume.probe_count(); ++i)
+    for (int a = 0; a < 3; ++a) offsets.push_back(volume.offset(i)[a]);
+  bytes.append(reinterpret_cast<const char*>(offsets.data()), offsets.size() * 4);
   io::write_file_atomically(path, bytes);
   io::write_file_atomically(path + ".json", summary(volume, packed).dump(2) + '\n');
 }
@@ -106,8 +118,8 @@ VolumeFile read_volume_file(const std::string& path) {
   if (bytes.size() < kVolumeHeaderBytes || std::memcmp(bytes.data(), kVolumeMagic, 4) != 0)
     fail(path, "not a ddish probe volume (no DDPV header)");
   const auto version = get<std::uint32_t>(bytes, 4);
-  if (version != kVolumeVersion)
-    fail(path, "probe volume version " + std::to_string(version) + " is not supported (expected " +
+  if (version != 1 && version != kVolumeVersion)
+    fail(path, "probe volume version " + std::to_string(version) + " is not supported (1 or " +
                    std::to_string(kVolumeVersion) + ")");
   glm::ivec3 counts;
   scene::Aabb bounds;
@@ -133,9 +145,21 @@ VolumeFile read_volume_file(const std::string& path) {
     fail(path, "words per probe " + std::to_string(words) + " does not match SH order " +
                    std::to_string(order));
   const std::size_t payload = std::size_t(file.grid.probe_count()) * words * 2u;
-  if (bytes.size() != kVolumeHeaderBytes + payload)
+  std::size_t expected = kVolumeHeaderBytes + payload;
+  if (version >= 2) {
+    if (bytes.size() < expected + 4)
+      fail(path, "size " + std::to_string(bytes.size()) + " bytes, expected at least " +
+                     std::to_string(expected + 4) + " (truncated or corrupt)");
+    const auto res = get<std::uint32_t>(bytes, expected);
+    if (res > std::uint32_t(kMaxMomentResolution))
+      fail(path, "moment map resolution " + std::to_string(res) + " (at most " +
+                     std::to_string(kMaxMomentResolution) + ")");
+    file.moment_resolution = int(res);
+    expected += 4 + std::size_t(file.grid.probe_count()) * (res * res * 4u + 12u);
+  }
+  if (bytes.size() != expected)
     fail(path, "size " + std::to_string(bytes.size()) + " bytes, expected " +
-                   std::to_string(kVolumeHeaderBytes + payload) + " (truncated or corrupt)");
+                   std::to_string(expected) + " (truncated or corrupt)");
 
   file.frame = get<std::uint64_t>(bytes, 56);
   PackedVolume& p = file.packed;
@@ -144,6 +168,17 @@ VolumeFile read_volume_file(const std::string& path) {
   p.encoding = Encoding(encoding);
   p.words.resize(payload / 2);
   std::memcpy(p.words.data(), bytes.data() + kVolumeHeaderBytes, payload);
+  if (file.moment_resolution > 0) {
+    file.moments.resize(std::size_t(file.grid.probe_count()) *
+                        std::size_t(file.moment_resolution * file.moment_resolution));
+    std::memcpy(file.moments.data(), bytes.data() + kVolumeHeaderBytes + payload + 4,
+                file.moments.size() * 4);
+  }
+  if (version >= 2) {
+    file.offsets.resize(std::size_t(file.grid.probe_count()) * 3);
+    std::memcpy(file.offsets.data(), bytes.data() + kVolumeHeaderBytes + payload + 4 + file.moments.size() * 4,
+                file.offsets.size() * 4);
+  }
   for (std::uint32_t i = 0; i < file.grid.probe_count(); ++i)
     (sh::packed_format(p.probe(i), p.sh_order) == sh::PackFormat::kHalf ? p.half_probes
                                                                         : p.shared_exp_probes) += 1;
@@ -151,11 +186,22 @@ VolumeFile read_volume_file(const std::string& path) {
 }
 
 ProbeVolume VolumeFile::to_volume() const {
-  ProbeVolume volume(grid, packed.sh_order);
+  ProbeVolume volume(grid, packed.sh_order, moment_resolution);
   volume.set_frame(frame);
+  const std::size_t texels = std::size_t(volume.moment_texels());
   for (std::uint32_t i = 0; i < grid.probe_count(); ++i) {
     volume.set_sh(i, unpack_probe(packed, i));
     volume.state(i).flags = unpack_flags(packed, i);
+    if (!offsets.empty())  // untrusted: set_offset clamps to the cell and zeroes NaN
+      volume.set_offset(i, {offsets[3 * i], offsets[3 * i + 1], offsets[3 * i + 2]});
+    std::span<glm::vec2> m = volume.moments(i);
+    for (std::size_t t = 0; t < texels; ++t) {
+      const std::uint32_t v = moments[i * texels + t];
+      // Untrusted halves: NaN or out-of-range values become "nothing in the way".
+      glm::vec2 d(sh::half_to_float(std::uint16_t(v & 0xffffu)), sh::half_to_float(std::uint16_t(v >> 16)));
+      if (!(d.x >= 0.0f && d.x <= 1.0f && d.y >= 0.0f && d.y <= 1.0f)) d = glm::vec2(1.0f);
+      m[t] = d;
+    }
   }
   return volume;
 }

@@ -47,15 +47,27 @@ OwnedDescriptorSet::OwnedDescriptorSet(VkDevice device,
   allocate_descriptor_sets(device, pool_.get(), {&layout, 1}, &set_);
 }
 
-void OwnedDescriptorSet::write_uniform_buffer(std::uint32_t binding,
-                                              const VkDescriptorBufferInfo& buffer) const {
+namespace {
+void write_buffer(VkDevice device, VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type,
+                  const VkDescriptorBufferInfo& buffer) {
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set_;
+  write.dstSet = set;
   write.dstBinding = binding;
   write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+  write.descriptorType = type;
   write.pBufferInfo = &buffer;
-  vkUpdateDescriptorSets(device_, 1, &write, 0, nullptr);
+  vkUpdateDescriptorSets(device, 1, &write, 0, nullptr);
+}
+}  // namespace
+
+void OwnedDescriptorSet::write_uniform_buffer(std::uint32_t binding,
+                                              const VkDescriptorBufferInfo& buffer) const {
+  write_buffer(device_, set_, binding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, buffer);
+}
+
+void OwnedDescriptorSet::write_storage_buffer(std::uint32_t binding,
+                                              const VkDescriptorBufferInfo& buffer) const {
+  write_buffer(device_, set_, binding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffer);
 }
 
 void OwnedDescriptorSet::write_images(std::uint32_t binding,

@@ -38,6 +38,7 @@ class OwnedDescriptorSet {
 
   // Points `binding` (array elements from 0) at the buffer or the images.
   void write_uniform_buffer(std::uint32_t binding, const VkDescriptorBufferInfo& buffer) const;
+  void write_storage_buffer(std::uint32_t binding, const VkDescriptorBufferInfo& buffer) const;
   void write_images(std::uint32_t binding, std::span<const VkDescriptorImageInfo> images) const;
 
  private:

@@ -1,6 +1,7 @@
 #include "raster/probe_slots.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -46,6 +47,19 @@ void pack_probe_slots(const probes::ProbeVolume& volume, std::uint32_t probe, in
   for (int i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c)
       out[std::size_t(1 + 3 * i + c)] = to_half(coeffs[std::size_t(i)][c], clamps);
+}
+
+void pack_probe_moments(const probes::ProbeVolume& volume, std::uint32_t probe,
+                        std::span<std::uint32_t> out, SlotClamps& clamps) {
+  const auto moments = volume.moments(probe);
+  if (out.size() != moments.size() + 3)
+    throw std::invalid_argument("probe visibility record of " + std::to_string(out.size()) +
+                                " uints, " + std::to_string(moments.size() + 3) + " needed");
+  for (std::size_t t = 0; t < moments.size(); ++t)
+    out[t] = std::uint32_t(to_half(moments[t].x, clamps)) |
+             (std::uint32_t(to_half(moments[t].y, clamps)) << 16);
+  const glm::vec3 offset = volume.offset(probe);
+  for (int a = 0; a < 3; ++a) out[moments.size() + std::size_t(a)] = std::bit_cast<std::uint32_t>(offset[a]);
 }
 
 std::vector<ProbeRun> probe_row_runs(std::span<const std::uint32_t> probes,

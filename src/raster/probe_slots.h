@@ -32,6 +32,11 @@ struct SlotClamps {
 void pack_probe_slots(const probes::ProbeVolume& volume, std::uint32_t probe, int order,
                       std::span<std::uint16_t> out, SlotClamps& clamps);
 
+// Writes probe `probe`'s visibility record for the GPU (volume.moment_texels() + 3 uints): each
+// moment texel as half(mean d) | half(mean d^2) << 16, then its relocation offset as 3 floats.
+void pack_probe_moments(const probes::ProbeVolume& volume, std::uint32_t probe,
+                        std::span<std::uint32_t> out, SlotClamps& clamps);
+
 // Consecutive probes of one grid row (same y and z, x increasing): probes first .. first+count-1
 // in grid index order.
 struct ProbeRun {

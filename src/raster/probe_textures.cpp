@@ -81,6 +81,15 @@ ProbeTextures::ProbeTextures(const gpu::Device& device, const probes::ProbeVolum
   uniform_.counts = glm::vec4(glm::vec3(counts), float(n_textures));
   uniform_.bounds_min = glm::vec4(grid_.bounds().min, 0.0f);
   uniform_.cell_size = glm::vec4(spacing, 0.0f);
+  moment_res_ = volume.moment_resolution();
+  if (moment_res_ > 0) {
+    record_uints_ = std::uint32_t(volume.moment_texels()) + 3;  // the map, then the offset
+    float min_cell = 0.0f;
+    for (int a = 0; a < 3; ++a)
+      if (spacing[a] > 0.0f) min_cell = min_cell > 0.0f ? std::min(min_cell, spacing[a]) : spacing[a];
+    uniform_.visibility = glm::vec4(float(moment_res_), float(record_uints_),
+                                    volume.moment_range(), kVisibilityBiasCells * min_cell);
+  }
 
   for (std::uint32_t t = 0; t < n_textures; ++t) {
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -113,8 +122,11 @@ ProbeTextures::ProbeTextures(const gpu::Device& device, const probes::ProbeVolum
     textures_.push_back(std::move(tex));
   }
 
-  staging_ = gpu::Buffer(device, kTexelBytes * n_textures * grid_.probe_count(), 0,
+  const VkDeviceSize moment_bytes = 4ull * record_uints_ * grid_.probe_count();
+  staging_ = gpu::Buffer(device, kTexelBytes * n_textures * grid_.probe_count() + moment_bytes, 0,
                          gpu::MemoryUse::upload);
+  moments_ = gpu::Buffer(device, moment_bytes > 0 ? moment_bytes : 16,
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUse::device_local);
   grid_buffer_ = gpu::Buffer(device, sizeof(ProbeGridUniform), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                              gpu::MemoryUse::upload);
   grid_buffer_.write(&uniform_, sizeof(uniform_));
@@ -124,9 +136,11 @@ ProbeTextures::ProbeTextures(const gpu::Device& device, const probes::ProbeVolum
       {kGridBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_ALL, nullptr},
       {kShBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, n_textures, VK_SHADER_STAGE_ALL,
        nullptr},
+      {kMomentBinding, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_ALL, nullptr},
   };
   descriptors_ = OwnedDescriptorSet(vk, bindings);
   descriptors_.write_uniform_buffer(kGridBinding, grid_buffer_.descriptor());
+  descriptors_.write_storage_buffer(kMomentBinding, moments_.descriptor());
   std::vector<VkDescriptorImageInfo> images;
   for (const Texture& tex : textures_)
     images.push_back({sampler_.get(), tex.view.get(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
@@ -137,6 +151,10 @@ void ProbeTextures::check_volume(const probes::ProbeVolume& volume) const {
   if (!(volume.grid() == grid_))
     throw std::invalid_argument(
         "probe volume grid differs from the one its textures were made for");
+  if (volume.moment_resolution() != moment_res_)
+    throw std::invalid_argument("probe volume has moment maps of resolution " +
+                                std::to_string(volume.moment_resolution()) +
+                                ", its textures were made for " + std::to_string(moment_res_));
 }
 
 ProbeUploadStats ProbeTextures::upload(gpu::CommandRunner& runner,
@@ -199,8 +217,45 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
                     texels_.begin() + std::ptrdiff_t(4 * (t * n + k)));
     }
   }
-  stats.bytes = kTexelBytes * n_tex * n;
-  staging_.write(texels_.data(), stats.bytes);
+  const VkDeviceSize texel_bytes = kTexelBytes * n_tex * n;
+  stats.bytes = texel_bytes;
+  staging_.write(texels_.data(), texel_bytes);
+  if (record_uints_ > 0) {
+    // Moment maps of the listed probes after the texels, in list order: one copy per run.
+    moment_scratch_.resize(std::size_t(record_uints_) * n);
+    k = 0;
+    for (const ProbeRun& r : runs)
+      for (std::uint32_t p = r.first; p < r.first + r.count; ++p, ++k)
+        pack_probe_moments(volume, p,
+                           std::span(moment_scratch_).subspan(k * record_uints_, record_uints_),
+                           stats.clamps);
+    const VkDeviceSize bytes = 4ull * moment_scratch_.size();
+    staging_.write(moment_scratch_.data(), bytes, texel_bytes);
+    stats.bytes += bytes;
+    VkBufferMemoryBarrier before{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
+    before.srcAccessMask = initialized_ ? VK_ACCESS_SHADER_READ_BIT : 0;
+    before.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    before.srcQueueFamilyIndex = before.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    before.buffer = moments_.handle();
+    before.size = VK_WHOLE_SIZE;
+    vkCmdPipelineBarrier(cmd, initialized_ ? kReaderStages : VkPipelineStageFlags{VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT},
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 1, &before, 0, nullptr);
+    std::vector<VkBufferCopy> copies;
+    VkDeviceSize src = texel_bytes;
+    for (const ProbeRun& r : runs) {
+      const VkDeviceSize size = 4ull * record_uints_ * r.count;
+      copies.push_back({src, 4ull * record_uints_ * r.first, size});
+      src += size;
+    }
+    vkCmdCopyBuffer(cmd, staging_.handle(), moments_.handle(), std::uint32_t(copies.size()),
+                    copies.data());
+    stats.regions += std::uint32_t(copies.size());
+    VkBufferMemoryBarrier after_copy = before;
+    after_copy.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    after_copy.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, kReaderStages, 0, 0, nullptr, 1,
+                         &after_copy, 0, nullptr);
+  }
   clamped_total_ += stats.clamps.overflowed + stats.clamps.not_finite;
 
   std::vector<VkImage> images;

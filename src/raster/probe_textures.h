@@ -8,9 +8,14 @@
 // k / 4, with w = 1 for an active and 0 for an inactive probe (an active probe that has not
 // been updated yet counts, with zero radiance): 7 textures (56 bytes a probe) at L2. Values beyond fp16 are saturated to +-65504 and counted, never stored as Inf.
 //
+// A volume with distance moments (probes/moment_map.h) also gets its moment maps in a storage
+// buffer: probe i's record at i * (R^2 + 3) uints, its R x R texels (each two halves, mean d and
+// mean d^2 over the range, low half first) then its relocation offset (3 floats, metres), which
+// the shader's visibility weights read.
+//
 // Descriptor set, layout(): binding 0 uniform buffer ProbeGridUniform (std140), binding 1 an
-// array of texture_count() combined image samplers (sampler3D probe_sh[]), visible to every
-// stage. A shader compiled with PROBE_SH_ORDER = L reads the first probe_texture_count(L) of
+// array of texture_count() combined image samplers (sampler3D probe_sh[]), binding 2 the moment
+// storage buffer (a 16-byte placeholder without moments), visible to every stage. A shader compiled with PROBE_SH_ORDER = L reads the first probe_texture_count(L) of
 // them, so L must not exceed order().
 #pragma once
 
@@ -42,8 +47,15 @@ struct ProbeGridUniform {
   glm::vec4 counts{1.0f};       // xyz: probes per axis; w: texture count
   glm::vec4 bounds_min{0.0f};   // xyz: the volume's bounds
   glm::vec4 cell_size{0.0f};    // xyz: distance between neighbouring probes
+  // x: moment map resolution R (0: none, trilinear textures only); y: record stride R * R + 3;
+  // z: the volume's moment range; w: the distance the visibility test moves the shaded point.
+  glm::vec4 visibility{0.0f};
 };
-static_assert(sizeof(ProbeGridUniform) == 80, "std140 layout of ProbeGridBlock");
+static_assert(sizeof(ProbeGridUniform) == 96, "std140 layout of ProbeGridBlock");
+
+// The shaded point is moved this many of the smallest cell sizes off the surface before the
+// Chebyshev test (DDGI's 0.75 x 0.3), so a surface does not shadow itself.
+inline constexpr float kVisibilityBiasCells = 0.225f;
 
 struct ProbeUploadStats {
   bool full = false;           // the whole volume was copied (first upload, or most was dirty)
@@ -57,6 +69,7 @@ class ProbeTextures {
  public:
   static constexpr std::uint32_t kGridBinding = 0;
   static constexpr std::uint32_t kShBinding = 1;
+  static constexpr std::uint32_t kMomentBinding = 2;
   // A dirty list that falls into more row runs (copy regions per texture) than this fraction
   // of the volume's probes, or holds more than half of them, is uploaded whole. Measured on
   // lavapipe, 16^3 L2 volume (probe_upload_test.cpp, DISABLED_UploadCost; the whole volume
@@ -93,6 +106,8 @@ class ProbeTextures {
   bool ready() const { return initialized_; }
   int order() const { return order_; }
   std::uint32_t texture_count() const { return std::uint32_t(textures_.size()); }
+  // The volume's moment map resolution (0: none).
+  int moment_resolution() const { return moment_res_; }
   const probes::ProbeGrid& grid() const { return grid_; }
   const ProbeGridUniform& grid_uniform() const { return uniform_; }
   // Values saturated or zeroed on their way to fp16 over all uploads so far.
@@ -118,6 +133,10 @@ class ProbeTextures {
   std::vector<Texture> textures_;
   gpu::Buffer staging_;
   gpu::Buffer grid_buffer_;
+  gpu::Buffer moments_;  // the moment maps, or a placeholder
+  int moment_res_ = 0;
+  std::uint32_t record_uints_ = 0;  // uints per probe record (map and offset); 0 without moments
+  std::vector<std::uint32_t> moment_scratch_;
   Sampler sampler_;
   OwnedDescriptorSet descriptors_;
   std::vector<std::uint16_t> texels_;  // packing scratch, kept to avoid reallocation

@@ -128,7 +128,9 @@ TEST(VolumeFile, RoundTrip) {
   const std::string path = temp_path("probes_round_trip.ddpv");
   write_volume_file(path, volume, packed);
 
-  EXPECT_EQ(std::filesystem::file_size(path), kVolumeHeaderBytes + 4u * packed.words_per_probe * 2u);
+  // Version 2: the probes, then a zero moment resolution (no moments), then the offsets.
+  EXPECT_EQ(std::filesystem::file_size(path),
+            kVolumeHeaderBytes + 4u * packed.words_per_probe * 2u + 4u + 4u * 12u);
   VolumeFile file = read_volume_file(path);
   EXPECT_EQ(file.grid, volume.grid());
   EXPECT_EQ(file.frame, 1u);
@@ -155,6 +157,49 @@ TEST(VolumeFile, RoundTrip) {
   EXPECT_EQ(summary["inactive"], 1);
   EXPECT_EQ(summary["encoding"], "mixed");
   EXPECT_EQ(summary["bytes_per_probe"], 2 * (3 * 16 + 1));
+}
+
+TEST(VolumeFile, MomentsSurviveTheTripAndVersionOneFilesStillRead) {
+  ProbeVolume volume(ProbeGrid(ddish::scene::Aabb{{-1.0f, -1.0f, -1.0f}, {1.0f, 1.0f, 1.0f}}, {2, 1, 1}), 2, 3);
+  for (std::uint32_t i = 0; i < 2; ++i)
+    for (int t = 0; t < 9; ++t) volume.moments(i)[std::size_t(t)] = {0.125f * float(t + i), 0.0625f * float(t)};
+  volume.set_offset(1, {0.25f, -0.125f, 0.0f});
+  const std::string path = temp_path("probes_moments.ddpv");
+  PackedVolume packed = pack_volume(volume);
+  write_volume_file(path, volume, packed);
+  EXPECT_EQ(std::filesystem::file_size(path), kVolumeHeaderBytes + packed.bytes() + 4u + 2u * (9u * 4u + 12u));
+  ProbeVolume back = read_volume_file(path).to_volume();
+  ASSERT_EQ(back.moment_resolution(), 3);
+  EXPECT_EQ(back.offset(0), glm::vec3(0.0f));
+  EXPECT_EQ(back.offset(1), glm::vec3(0.25f, -0.125f, 0.0f));
+  for (std::uint32_t i = 0; i < 2; ++i)
+    for (int t = 0; t < 9; ++t) {
+      const glm::vec2 want = volume.moments(i)[std::size_t(t)];
+      EXPECT_EQ(back.moments(i)[std::size_t(t)], t + i > 8 ? glm::vec2(1.0f) : want)  // > 1: refused
+          << "probe " << i << " texel " << t;
+    }
+
+  // The same file as version 1 wrote it: no moment section. It reads, without moments.
+  {
+    std::string bytes;
+    {
+      std::ifstream in(path, std::ios::binary);
+      bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    bytes.resize(kVolumeHeaderBytes + packed.bytes());
+    bytes[4] = 1;
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << bytes;
+  }
+  ProbeVolume v1 = read_volume_file(path).to_volume();
+  EXPECT_FALSE(v1.has_moments());
+  EXPECT_EQ(v1.probe_count(), 2u);
+  // A version 1 header with a moment section is the wrong size: refused.
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::app);
+    out << std::string(4, '\0');
+  }
+  EXPECT_THROW(read_volume_file(path), std::runtime_error);
 }
 
 TEST(VolumeFile, RejectsBrokenFiles) {

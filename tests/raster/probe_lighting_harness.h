@@ -32,6 +32,7 @@ enum class Kind {
   l0 = 4,
   lighting_irradiance = 5,  // probe_lighting(), normal: lighting_normal(reflected direction)
   lighting_specular = 6,
+  visible_l0 = 7,  // as l0, with visibility: normal b.xyz, the viewer along it
 };
 
 struct Query {
@@ -57,6 +58,10 @@ inline Query lighting_query(Kind kind, glm::vec3 p, glm::vec3 r, float roughness
 }
 inline Query l0_query(glm::vec3 p) {
   return {glm::vec4(p, 0.0f), glm::vec4(0.0f, 0.0f, 1.0f, float(Kind::l0))};
+}
+
+inline Query visible_l0_query(glm::vec3 p, glm::vec3 n) {
+  return {glm::vec4(p, 0.0f), glm::vec4(n, float(Kind::visible_l0))};
 }
 
 class Harness {
