@@ -21,7 +21,9 @@ glm::vec3 safe_normalize(const glm::vec3& v, const glm::vec3& fallback) {
 
 // Texture lod for a footprint (its texture-independent part computed once per hit), or the
 // fixed level when one is asked for. A slot's footprint in UV units scales with the square root
-// of its UV set's area (per world area) and of its transform's area scale.
+// of its UV set's area (per world area) and of its transform's area scale. Slots of one material
+// nearly always share both, so the last footprint is kept and reused for the same pair (a square
+// root and a logarithm per texture saved; the same numbers).
 struct LodRule {
   float cone_width = 0.0f;
   float cos_theta = 1.0f;
@@ -30,12 +32,30 @@ struct LodRule {
   const TriangleRecord* tri = nullptr;
   int prim = -1;
   int fixed = -1;
+  mutable int cached_texcoord = -1;
+  mutable float cached_scale = 0.0f;
+  mutable float cached_log2 = 0.0f;
   float lod(const MipTexture& t, const scene::TextureSlot& slot) const {
     if (fixed >= 0) return static_cast<float>(fixed);
-    const float area = uv_area(*tri, *mesh, prim, slot.texcoord) * slot.transform.area_scale();
-    return t.lod_for_footprint_log2(MipTexture::footprint_log2(cone_width, cos_theta, area, world_area));
+    const float scale = slot.transform.area_scale();
+    if (slot.texcoord != cached_texcoord || scale != cached_scale) {
+      const float area = uv_area(*tri, *mesh, prim, slot.texcoord) * scale;
+      cached_log2 = MipTexture::footprint_log2(cone_width, cos_theta, area, world_area);
+      cached_texcoord = slot.texcoord;
+      cached_scale = scale;
+    }
+    return t.lod_for_footprint_log2(cached_log2);
   }
 };
+
+// KHR_texture_transform's apply() without its four trigonometric calls when the transform is
+// the identity: the same arithmetic on the identity's rows (cos 0 = 1, sin 0 = 0), so the same
+// bits, non-finite coordinates included.
+glm::vec2 apply_transform(const scene::TextureTransform& xf, glm::vec2 uv) {
+  if (!xf.identity()) return xf.apply(uv);
+  const glm::vec3 h(uv, 1.0f);
+  return {glm::dot(glm::vec3(1.0f, 0.0f, 0.0f), h), glm::dot(glm::vec3(-0.0f, 1.0f, 0.0f), h)};
+}
 
 }  // namespace
 
@@ -70,7 +90,7 @@ glm::vec2 slot_uv(const scene::Mesh& mesh, const scene::TextureSlot& slot, int p
     const std::uint32_t* idx = &mesh.indices[static_cast<std::size_t>(prim) * 3];
     uv = uvs[idx[0]] * w.x + uvs[idx[1]] * w.y + uvs[idx[2]] * w.z;
   }
-  return slot.transform.apply(uv);
+  return apply_transform(slot.transform, uv);
 }
 
 glm::vec2 slot_uv(const TriangleRecord& tri, const scene::Mesh& mesh, const scene::TextureSlot& slot, int prim,
@@ -78,7 +98,7 @@ glm::vec2 slot_uv(const TriangleRecord& tri, const scene::Mesh& mesh, const scen
   if (slot.texcoord == 1) return slot_uv(mesh, slot, prim, w);  // Mesh::uv_set's rule
   glm::vec2 uv(0.0f);
   if (tri.has(TriangleRecord::kUvs)) uv = tri.uv[0] * w.x + tri.uv[1] * w.y + tri.uv[2] * w.z;
-  return slot.transform.apply(uv);
+  return apply_transform(slot.transform, uv);
 }
 
 glm::vec4 vertex_color(const scene::Mesh& mesh, int prim, const glm::vec3& w) {
