@@ -12,7 +12,7 @@
 // update would cost if shading were free.
 //
 //   trace_floor SCENE [--grid X,Y,Z] [--samples N] [--bounces N] [--updates K] [--repeat R]
-//                     [--threads T]
+//                     [--threads T] [--stream G1,G2,...]
 //
 // Grid: --grid counts over the sidecar's probe bounds (else the scene's bounds); without it the
 // sidecar's counts; without those the automatic grid (what `ddish render` places by default).
@@ -22,6 +22,13 @@
 // cores), or T. Prints one CSV row (header first): the update with the median time, and the
 // medians of its floor's repeats; the *_cpu columns are process CPU time (all threads) instead
 // of wall-clock time.
+//
+// --stream: the same rays also through Embree's stream API (rtcIntersect1M / rtcOccluded1M, the
+// queries a batched integrator would make), in groups of G consecutive rays of each kind per
+// thread, once with the incoherent and once with the coherent context flag (coherent: Embree
+// sorts each group into packets by direction octant). One comment line ('#') per group size and
+// flag and timed update, after the floor's own R repeats: median ms beside the floor's, and the
+// hit counts (the same unless a packet and a single ray disagree on an edge).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -74,6 +81,21 @@ double cpu_seconds() {
 
 
 
+
+// An Embree occlusion ray for a recorded shadow ray (full mask, id, flags and time 0).
+RTCRay to_rtc_ray(const trace::RecordedRay& r) {
+  RTCRay ray{};
+  ray.org_x = r.origin.x;
+  ray.org_y = r.origin.y;
+  ray.org_z = r.origin.z;
+  ray.dir_x = r.direction.x;
+  ray.dir_y = r.direction.y;
+  ray.dir_z = r.direction.z;
+  ray.tnear = r.tmin;
+  ray.tfar = r.tmax;
+  ray.mask = 0xFFFFFFFFu;
+  return ray;
+}
 
 // One flat Embree scene of every instance's triangles in world space: the cheapest closest-hit
 // structure Embree offers for these rays (no instancing level, no filter callbacks).
@@ -129,16 +151,7 @@ class FlatScene {
                         for (std::size_t i = range.begin(); i != range.end(); ++i) {
                           const trace::RecordedRay& r = rays[i];
                           if (r.occlusion) {
-                            RTCRay ray{};
-                            ray.org_x = r.origin.x;
-                            ray.org_y = r.origin.y;
-                            ray.org_z = r.origin.z;
-                            ray.dir_x = r.direction.x;
-                            ray.dir_y = r.direction.y;
-                            ray.dir_z = r.direction.z;
-                            ray.tnear = r.tmin;
-                            ray.tfar = r.tmax;
-                            ray.mask = 0xFFFFFFFFu;
+                            RTCRay ray = to_rtc_ray(r);
                             rtcOccluded1(scene_, &context, &ray);
                             if (ray.tfar < 0.0f) ++local;
                           } else {
@@ -148,6 +161,50 @@ class FlatScene {
                             if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) ++local;
                           }
                         }
+                        hits += local;
+                      });
+    return hits.load();
+  }
+
+  // The same rays through rtcIntersect1M / rtcOccluded1M, `group` consecutive rays of each kind
+  // at a time per thread; returns the number of rays that hit something (the same as trace()).
+  std::uint64_t trace_stream(const std::vector<trace::RecordedRay>& rays, std::size_t group,
+                             bool coherent) const {
+    std::atomic<std::uint64_t> hits{0};
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 1024),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        RTCIntersectContext context;
+                        rtcInitIntersectContext(&context);
+                        context.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                                 : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+                        std::vector<RTCRayHit> closest;
+                        std::vector<RTCRay> shadow;
+                        closest.reserve(group);
+                        shadow.reserve(group);
+                        std::uint64_t local = 0;
+                        auto flush = [&]() {
+                          if (!closest.empty()) {
+                            rtcIntersect1M(scene_, &context, closest.data(), unsigned(closest.size()),
+                                           sizeof(RTCRayHit));
+                            for (const RTCRayHit& h : closest) local += h.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+                            closest.clear();
+                          }
+                          if (!shadow.empty()) {
+                            rtcOccluded1M(scene_, &context, shadow.data(), unsigned(shadow.size()), sizeof(RTCRay));
+                            for (const RTCRay& r : shadow) local += r.tfar < 0.0f;
+                            shadow.clear();
+                          }
+                        };
+                        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                          const trace::RecordedRay& r = rays[i];
+                          if (r.occlusion) {
+                            shadow.push_back(to_rtc_ray(r));
+                          } else {
+                            closest.push_back(trace::to_rtc_rayhit(trace::Ray{r.origin, r.direction, r.tmin, r.tmax, 0.0f}));
+                          }
+                          if (closest.size() >= group || shadow.size() >= group) flush();
+                        }
+                        flush();
                         hits += local;
                       });
     return hits.load();
@@ -186,7 +243,7 @@ std::uint64_t trace_on(const trace::EmbreeScene& scene, const std::vector<trace:
 }  // namespace
 
 int main(int argc, char** argv) try {
-  std::string path, grid;
+  std::string path, grid, stream_list;
   int samples = 256, bounces = 15, updates = 4, repeat = 3, threads = 0;  // bounces: ddish render's default
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -200,14 +257,23 @@ int main(int argc, char** argv) try {
     else if (a == "--updates") updates = std::stoi(next());
     else if (a == "--repeat") repeat = std::stoi(next());
     else if (a == "--threads") threads = std::stoi(next());
+    else if (a == "--stream") stream_list = next();
     else if (!a.empty() && a[0] == '-') throw std::invalid_argument("unknown option " + a);
     else path = a;
   }
   if (path.empty())
     throw std::invalid_argument("usage: trace_floor SCENE [--grid X,Y,Z] [--samples N] [--bounces N] "
-                                "[--updates K] [--repeat R] [--threads T]");
+                                "[--updates K] [--repeat R] [--threads T] [--stream G1,G2,...]");
   if (samples < 1 || bounces < 0 || updates < 2 || repeat < 1 || threads < 0)
     throw std::invalid_argument("need --samples >= 1, --bounces >= 0, --updates >= 2, --repeat >= 1, --threads >= 0");
+  std::vector<std::size_t> stream_groups;
+  for (std::size_t at = 0; at < stream_list.size();) {
+    const std::size_t comma = std::min(stream_list.find(',', at), stream_list.size());
+    const int g = std::stoi(stream_list.substr(at, comma - at));
+    if (g < 1) throw std::invalid_argument("--stream group sizes must be >= 1");
+    stream_groups.push_back(std::size_t(g));
+    at = comma + 1;
+  }
   std::optional<tbb::global_control> thread_limit;
   if (threads > 0) thread_limit.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   const int used_threads = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
@@ -253,6 +319,21 @@ int main(int argc, char** argv) try {
       trace_on(tracer.embree_scene(), rays);
       scene_s.push_back(seconds_since(t0));
       scene_cpu.push_back(cpu_seconds() - c1);
+    }
+    for (const std::size_t g : stream_groups) {
+      for (const bool coherent : {false, true}) {
+        std::vector<double> st;
+        std::uint64_t stream_hits = 0;
+        for (int r = 0; r < repeat; ++r) {
+          const Clock::time_point t0 = Clock::now();
+          stream_hits = flat.trace_stream(rays, g, coherent);
+          st.push_back(seconds_since(t0));
+        }
+        std::printf("# update %d stream group %zu %s: %.3f ms, floor %.3f ms (%.3f x); %llu hits, floor %llu\n", k,
+                    g, coherent ? "coherent" : "incoherent", bench::median(st) * 1e3, bench::median(flat_s) * 1e3,
+                    bench::median(st) / bench::median(flat_s), static_cast<unsigned long long>(stream_hits),
+                    static_cast<unsigned long long>(floor_hits));
+      }
     }
     floor_s.push_back(bench::median(flat_s));
     floor_cpu.push_back(bench::median(flat_cpu));
