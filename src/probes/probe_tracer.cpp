@@ -24,13 +24,26 @@ void check_update_options(const UpdateOptions& options) {
                                 std::to_string(options.backface_threshold));
 }
 
+namespace {
+
+std::vector<glm::vec3> fibonacci_lattice(std::uint32_t n) {
+  std::vector<glm::vec3> lattice(n);
+  for (std::uint32_t i = 0; i < n; ++i) lattice[i] = fibonacci_direction(i, n);
+  return lattice;
+}
+
+}  // namespace
+
 ProbeTracer::ProbeTracer(const RadianceSource& source, const UpdateOptions& options)
     : source_(source), options_(options) {
   check_update_options(options);
+  lattice_ = fibonacci_lattice(options.samples);
 }
 
 void ProbeTracer::set_options(const UpdateOptions& options) {
   check_update_options(options);
+  if (options.samples != options_.samples)
+    lattice_ = fibonacci_lattice(options.samples);
   options_ = options;
 }
 
@@ -59,7 +72,7 @@ std::uint32_t ProbeTracer::trace_probe(const ProbeVolume& volume, std::uint32_t 
     trace::Ray ray;
     ray.origin = origin;
     ray.cone_spread = cone_spread;
-    ray.direction = glm::normalize(rotation * fibonacci_direction(i, n));
+    ray.direction = glm::normalize(rotation * lattice_[i]);
     trace::PathSample s = source_.trace_path(ray, sampler);
     if (s.hit && s.backface) ++backfaces;
     if (nearest && s.hit) {
