@@ -1,12 +1,16 @@
 #version 460
 // The GPU probe tracer's second step (src/trace_vk/vk_probe_tracer.h): one work group per traced
 // probe projects its paths' radiance onto SH (weight 4 pi / N per lattice direction, as
-// probes::ProbeTracer::trace_probe does), counts back-face first hits and invalid paths,
-// classifies a probe on its first update (more back faces than the limit: inside geometry, its
-// coefficients zeroed as ProbeVolume::deactivate does), and blends the estimate into the
-// GPU-resident running average with the weight the host computed from the probe's history
-// (probes/accumulation.h).
+// probes::ProbeTracer::trace_probe does), bins their first-hit distances into the probe's
+// octahedral distance moments (probes::MomentEstimate's rules: clamped to the range and divided
+// by it, a miss counts as the range), counts back-face first hits and invalid paths, finds the
+// nearest front and back first hits of a probe being classified (for relocation), classifies a
+// probe on its first update (more back faces than the limit: inside geometry, its coefficients
+// zeroed and its moments reset as ProbeVolume::deactivate does), and blends both estimates into
+// the GPU-resident running averages with the weight the host computed from the probe's history
+// (probes/accumulation.h). A dry item only reports: the host decides relocation from it.
 #extension GL_GOOGLE_include_directive : require
+#include "octahedral.glsl"
 #include "sh_basis.glsl"
 
 layout(local_size_x = 64) in;
@@ -20,7 +24,7 @@ struct Blend {
   uint probe;
   float weight;          // the running average's weight of this update; 1: assign
   uint backface_limit;   // > this many back-face first hits: inside geometry; ~0u: not classified
-  uint pad;
+  uint flags;            // BLEND_DRY: report only, blend nothing
 };
 
 struct Result {
@@ -28,6 +32,12 @@ struct Result {
   uint invalid;
   uint inside;  // classified inside geometry by this update
   uint rays;    // rays the probe's paths cast
+  // Of a probe being classified: the nearest back- and front-face first hits (float bits,
+  // infinity: none) and the first path that reached each (~0u: none).
+  uint nearest_back;
+  uint back_path;
+  uint nearest_front;
+  uint front_path;
 };
 
 layout(std430, binding = 0) readonly buffer PathOut { vec4 path_out[]; };
@@ -36,33 +46,54 @@ layout(std430, binding = 2) readonly buffer Work { ProbeWork work[]; };
 layout(std430, binding = 3) readonly buffer Blends { Blend blends[]; };
 layout(std430, binding = 4) buffer Coefficients { float coefficients[]; };  // probe, coefficient, RGB
 layout(std430, binding = 5) writeonly buffer Results { Result results[]; };
+layout(std430, binding = 6) readonly buffer PathDistance { float path_distance[]; };
+// Probe, texel: (mean d, mean d^2) / (range, range^2), as ProbeVolume keeps them.
+layout(std430, binding = 7) buffer Moments { vec2 moments[]; };
 
 layout(push_constant) uniform Params {
   uint samples;
   uint order;
   uint work_count;
+  uint moment_resolution;  // 0: the volume keeps no moments
+  float moment_range;
 } params;
 
 const uint PATH_BACKFACE = 1u;
+const uint PATH_HIT = 2u;
 const uint PATH_INVALID = 4u;
 const uint PATH_RAYS_SHIFT = 8u;
+const uint BLEND_DRY = 1u;
 const float FOUR_PI = 12.566370614359172;
+const uint INF_BITS = 0x7F800000u;
+// Texels per lane: kMaxMomentResolution^2 / 64.
+const uint MAX_TEXEL_SLOTS = 4u;
 
 shared float reduce[64];
 shared float sums[SH_MAX_COEFFS * 3];
 shared uint backfaces;
 shared uint invalid;
 shared uint rays;
+shared uint nearest_bits[2];  // back, front
+shared uint nearest_path[2];
+// One chunk of 64 paths' texels and (d, d^2), binned by the lanes that own the texels.
+shared uint chunk_texel[64];
+shared vec2 chunk_moments[64];
 
 void main() {
   const uint w = gl_WorkGroupID.x;
   const uint lane = gl_LocalInvocationID.x;
   const uint n = params.samples;
   const int count = SH_COEFF_COUNT(int(params.order));
+  const Blend blend = blends[w];
+  const bool classifying = blend.backface_limit != 0xFFFFFFFFu;
   if (lane == 0u) {
     backfaces = 0u;
     invalid = 0u;
     rays = 0u;
+    nearest_bits[0] = INF_BITS;
+    nearest_bits[1] = INF_BITS;
+    nearest_path[0] = 0xFFFFFFFFu;
+    nearest_path[1] = 0xFFFFFFFFu;
   }
   barrier();
 
@@ -77,6 +108,9 @@ void main() {
     const uint flags = floatBitsToUint(p.w);
     if ((flags & PATH_BACKFACE) != 0u) ++my_backfaces;
     my_rays += flags >> PATH_RAYS_SHIFT;
+    // Distances are geometry: a path with invalid radiance still counts (ProbeTracer).
+    if (classifying && (flags & PATH_HIT) != 0u)
+      atomicMin(nearest_bits[(flags & PATH_BACKFACE) != 0u ? 0 : 1], floatBitsToUint(path_distance[w * n + i]));
     if ((flags & PATH_INVALID) != 0u) {
       ++my_invalid;
       continue;
@@ -102,9 +136,55 @@ void main() {
     if (lane == 0u) sums[j] = reduce[0];
     barrier();
   }
+  if (classifying) {
+    // The first path at the nearest distance, as ProbeTracer keeps the first strictly nearer.
+    for (uint i = lane; i < n; i += 64u) {
+      const uint flags = floatBitsToUint(path_out[w * n + i].w);
+      if ((flags & PATH_HIT) == 0u) continue;
+      const uint k = (flags & PATH_BACKFACE) != 0u ? 0u : 1u;
+      if (floatBitsToUint(path_distance[w * n + i]) == nearest_bits[k]) atomicMin(nearest_path[k], i);
+    }
+  }
 
-  const Blend blend = blends[w];
-  const bool inside = blend.backface_limit != 0xFFFFFFFFu && backfaces > blend.backface_limit;
+  // Distance moments: lane l owns texels l, l + 64, ...; paths are binned 64 at a time in path
+  // order, so each texel sums in the order the CPU's MomentEstimate::add does.
+  const uint res = params.moment_resolution;
+  const uint texels = res * res;
+  vec2 moment_sum[MAX_TEXEL_SLOTS];
+  uint moment_count[MAX_TEXEL_SLOTS];
+  for (uint s = 0u; s < MAX_TEXEL_SLOTS; ++s) {
+    moment_sum[s] = vec2(0.0);
+    moment_count[s] = 0u;
+  }
+  if (res > 0u) {
+    const float range = params.moment_range;
+    for (uint first = 0u; first < n; first += 64u) {
+      const uint i = first + lane;
+      if (i < n) {
+        const uint flags = floatBitsToUint(path_out[w * n + i].w);
+        const float d = (flags & PATH_HIT) != 0u ? min(max(path_distance[w * n + i], 0.0), range) / range : 1.0;
+        chunk_texel[lane] = octahedral_texel(normalize(rotation * lattice[i].xyz), res);
+        chunk_moments[lane] = vec2(d, d * d);
+      }
+      barrier();
+      const uint m = min(64u, n - first);
+      for (uint k = 0u; k < m; ++k) {
+        const uint t = chunk_texel[k];
+        if (t % 64u != lane) continue;
+        moment_sum[t / 64u] += chunk_moments[k];
+        ++moment_count[t / 64u];
+      }
+      barrier();
+    }
+  }
+  barrier();
+
+  const bool dry = (blend.flags & BLEND_DRY) != 0u;
+  const bool inside = !dry && classifying && backfaces > blend.backface_limit;
+  if (lane == 0u)
+    results[w] = Result(backfaces, invalid, inside ? 1u : 0u, rays, nearest_bits[0], nearest_path[0],
+                        nearest_bits[1], nearest_path[1]);
+  if (dry) return;
   const uint base = blend.probe * uint(count) * 3u;
   for (uint j = lane; j < uint(count) * 3u; j += 64u) {
     const float e = sums[j];
@@ -112,5 +192,17 @@ void main() {
     // w == 1 assigns, so the zero start leaves no trace (ProbeVolume::accumulate).
     coefficients[base + j] = inside ? 0.0 : (blend.weight == 1.0 ? e : avg + blend.weight * (e - avg));
   }
-  if (lane == 0u) results[w] = Result(backfaces, invalid, inside ? 1u : 0u, rays);
+  const uint moment_base = blend.probe * texels;
+  for (uint s = 0u; s < MAX_TEXEL_SLOTS; ++s) {
+    const uint t = lane + 64u * s;
+    if (t >= texels) break;
+    // Inside geometry: reset to "nothing in the way"; texels no path reached keep their value.
+    if (inside) {
+      moments[moment_base + t] = vec2(1.0);
+    } else if (moment_count[s] > 0u) {
+      const vec2 e = moment_sum[s] / float(moment_count[s]);
+      const vec2 avg = moments[moment_base + t];
+      moments[moment_base + t] = blend.weight == 1.0 ? e : avg + blend.weight * (e - avg);
+    }
+  }
 }

@@ -121,7 +121,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
     local = make_in_process(a.probe, a.schedule, s, a.schedule.budget_ms.value_or(0.0), TracerKind::embree,
                             std::nullopt);
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream.baked, placement)
-                                      : local_volume(a.probe, placement.grid, false);
+                                      : local_volume(a.probe, placement.grid);
   if (!remote) {
     const std::uint32_t n = leave_out_empty_probes(volume, s);
     if (n > 0) {
