@@ -361,7 +361,6 @@ const gpu::Buffer& VkProbeTracer::coefficient_buffer() const {
 
 std::uint64_t VkProbeTracer::rays_traced() const { return impl_->rays; }
 
-
 std::vector<Result> VkProbeTracer::Impl::trace(const std::vector<ProbeWork>& items, const std::vector<Blend>& blend_items,
                                                TraceParams tp, ProjectParams pp) {
   const std::uint32_t n = tp.samples;

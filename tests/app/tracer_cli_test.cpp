@@ -1,10 +1,12 @@
 // `--tracer auto|embree|vulkan`: auto never takes the Vulkan tracer on a CPU device (so the
 // suite traces with Embree on lavapipe), vulkan traces the probes on lavapipe 25 under the
-// validation layer (a textured, alpha-masked scene, an environment map and a skinned mesh that
-// bends from frame to frame too), and on a device without ray tracing `--tracer vulkan` is one
+// validation layer (with distance moments and relocation; a textured, alpha-masked scene, an
+// environment map and a skinned mesh that bends from frame to frame too), and on a device without ray tracing `--tracer vulkan` is one
 // error line and exit 2.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "cli_runner.h"
@@ -43,6 +45,14 @@ TEST_F(TracerCli, VulkanTracesTheProbesWithValidationClean) {
   EXPECT_NE(r.out.find("tracer   vulkan on "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("update 2/2: "), std::string::npos) << r.out;
   EXPECT_EQ(r.err.find("VUID"), std::string::npos) << r.err;  // the layer reports to stderr
+  // It gathers --probe-visibility's distance moments (8 by default) into the file, as Embree does.
+  std::ifstream summary(dir_ / "v.ddprobes.json");
+  const std::string json((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find("\"moment_resolution\": 8"), std::string::npos) << json;
+  const cli::Result moved = run("probes " + cli::cornell() + " --grid 4,4,4 --probe-samples 32 --tracer vulkan "
+                                "--probe-relocation", "DDISH_VALIDATION=1");
+  ASSERT_EQ(moved.code, 0) << moved.err;
+  EXPECT_EQ(moved.err.find("VUID"), std::string::npos) << moved.err;
   const cli::Result render = run("render " + cli::cornell() + " --width 32 --height 32 --probe-samples 16 --warmup-ms 0 "
                                  "--grid 3,3,3 --tracer vulkan --out " + path("out"));
   ASSERT_EQ(render.code, 0) << render.err;
