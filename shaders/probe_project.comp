@@ -3,7 +3,8 @@
 // probe projects its paths' radiance onto SH (weight 4 pi / N per lattice direction, as
 // probes::ProbeTracer::trace_probe does), bins their first-hit distances into the probe's
 // octahedral distance moments (probes::MomentEstimate's rules: clamped to the range and divided
-// by it, a miss counts as the range), counts back-face first hits and invalid paths, finds the
+// by it, a miss counts as the range; summed in fixed point, so each texel's sum is exact and
+// independent of the order the lanes add in), counts back-face first hits and invalid paths, finds the
 // nearest front and back first hits of a probe being classified (for relocation), classifies a
 // probe on its first update (more back faces than the limit: inside geometry, its coefficients
 // zeroed and its moments reset as ProbeVolume::deactivate does), and blends both estimates into
@@ -56,6 +57,9 @@ layout(push_constant) uniform Params {
   uint work_count;
   uint moment_resolution;  // 0: the volume keeps no moments
   float moment_range;
+  // Fixed-point steps per unit of (d / range) and (d / range)^2: a power of two no larger than
+  // 2^32 / samples, so no texel's sum of up to `samples` values overflows.
+  float moment_scale;
 } params;
 
 const uint PATH_BACKFACE = 1u;
@@ -65,8 +69,7 @@ const uint PATH_RAYS_SHIFT = 8u;
 const uint BLEND_DRY = 1u;
 const float FOUR_PI = 12.566370614359172;
 const uint INF_BITS = 0x7F800000u;
-// Texels per lane: kMaxMomentResolution^2 / 64.
-const uint MAX_TEXEL_SLOTS = 4u;
+const uint MAX_TEXELS = 256u;  // kMaxMomentResolution^2
 
 shared float reduce[64];
 shared float sums[SH_MAX_COEFFS * 3];
@@ -75,9 +78,10 @@ shared uint invalid;
 shared uint rays;
 shared uint nearest_bits[2];  // back, front
 shared uint nearest_path[2];
-// One chunk of 64 paths' texels and (d, d^2), binned by the lanes that own the texels.
-shared uint chunk_texel[64];
-shared vec2 chunk_moments[64];
+// Per texel: the fixed-point sums of d / range and (d / range)^2, and the paths.
+shared uint texel_d[MAX_TEXELS];
+shared uint texel_d2[MAX_TEXELS];
+shared uint texel_paths[MAX_TEXELS];
 
 void main() {
   const uint w = gl_WorkGroupID.x;
@@ -95,6 +99,13 @@ void main() {
     nearest_path[0] = 0xFFFFFFFFu;
     nearest_path[1] = 0xFFFFFFFFu;
   }
+  const uint res = params.moment_resolution;
+  const uint texels = res * res;
+  for (uint t = lane; t < texels; t += 64u) {
+    texel_d[t] = 0u;
+    texel_d2[t] = 0u;
+    texel_paths[t] = 0u;
+  }
   barrier();
 
   const ProbeWork pw = work[w];
@@ -111,12 +122,21 @@ void main() {
     // Distances are geometry: a path with invalid radiance still counts (ProbeTracer).
     if (classifying && (flags & PATH_HIT) != 0u)
       atomicMin(nearest_bits[(flags & PATH_BACKFACE) != 0u ? 0 : 1], floatBitsToUint(path_distance[w * n + i]));
+    const vec3 dir = normalize(rotation * lattice[i].xyz);
+    if (res > 0u) {
+      const float range = params.moment_range;
+      const float d = (flags & PATH_HIT) != 0u ? min(max(path_distance[w * n + i], 0.0), range) / range : 1.0;
+      const uint t = octahedral_texel(dir, res);
+      atomicAdd(texel_d[t], uint(d * params.moment_scale + 0.5));
+      atomicAdd(texel_d2[t], uint(d * d * params.moment_scale + 0.5));
+      atomicAdd(texel_paths[t], 1u);
+    }
     if ((flags & PATH_INVALID) != 0u) {
       ++my_invalid;
       continue;
     }
     float y[SH_MAX_COEFFS];
-    sh_basis(normalize(rotation * lattice[i].xyz), int(params.order), y);
+    sh_basis(dir, int(params.order), y);
     for (int j = 0; j < count; ++j) {
       acc[3 * j] += p.r * y[j] * weight;
       acc[3 * j + 1] += p.g * y[j] * weight;
@@ -146,37 +166,6 @@ void main() {
     }
   }
 
-  // Distance moments: lane l owns texels l, l + 64, ...; paths are binned 64 at a time in path
-  // order, so each texel sums in the order the CPU's MomentEstimate::add does.
-  const uint res = params.moment_resolution;
-  const uint texels = res * res;
-  vec2 moment_sum[MAX_TEXEL_SLOTS];
-  uint moment_count[MAX_TEXEL_SLOTS];
-  for (uint s = 0u; s < MAX_TEXEL_SLOTS; ++s) {
-    moment_sum[s] = vec2(0.0);
-    moment_count[s] = 0u;
-  }
-  if (res > 0u) {
-    const float range = params.moment_range;
-    for (uint first = 0u; first < n; first += 64u) {
-      const uint i = first + lane;
-      if (i < n) {
-        const uint flags = floatBitsToUint(path_out[w * n + i].w);
-        const float d = (flags & PATH_HIT) != 0u ? min(max(path_distance[w * n + i], 0.0), range) / range : 1.0;
-        chunk_texel[lane] = octahedral_texel(normalize(rotation * lattice[i].xyz), res);
-        chunk_moments[lane] = vec2(d, d * d);
-      }
-      barrier();
-      const uint m = min(64u, n - first);
-      for (uint k = 0u; k < m; ++k) {
-        const uint t = chunk_texel[k];
-        if (t % 64u != lane) continue;
-        moment_sum[t / 64u] += chunk_moments[k];
-        ++moment_count[t / 64u];
-      }
-      barrier();
-    }
-  }
   barrier();
 
   const bool dry = (blend.flags & BLEND_DRY) != 0u;
@@ -193,14 +182,12 @@ void main() {
     coefficients[base + j] = inside ? 0.0 : (blend.weight == 1.0 ? e : avg + blend.weight * (e - avg));
   }
   const uint moment_base = blend.probe * texels;
-  for (uint s = 0u; s < MAX_TEXEL_SLOTS; ++s) {
-    const uint t = lane + 64u * s;
-    if (t >= texels) break;
+  for (uint t = lane; t < texels; t += 64u) {
     // Inside geometry: reset to "nothing in the way"; texels no path reached keep their value.
     if (inside) {
       moments[moment_base + t] = vec2(1.0);
-    } else if (moment_count[s] > 0u) {
-      const vec2 e = moment_sum[s] / float(moment_count[s]);
+    } else if (texel_paths[t] > 0u) {
+      const vec2 e = vec2(float(texel_d[t]), float(texel_d2[t])) / (params.moment_scale * float(texel_paths[t]));
       const vec2 avg = moments[moment_base + t];
       moments[moment_base + t] = blend.weight == 1.0 ? e : avg + blend.weight * (e - avg);
     }

@@ -66,6 +66,7 @@ struct TraceParams {
 struct ProjectParams {
   std::uint32_t samples, order, work_count, moment_resolution;
   float moment_range;
+  float moment_scale;  // fixed-point steps per unit: no texel's sum of `samples` values overflows
 };
 
 VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
@@ -466,7 +467,8 @@ probes::UpdateStats VkProbeTracer::update(probes::ProbeVolume& volume, std::span
                          im.sky.b,
                          im.layout.environment};
     const ProjectParams pp{n, static_cast<std::uint32_t>(volume.sh_order()), 0,
-                           static_cast<std::uint32_t>(volume.moment_resolution()), volume.moment_range()};
+                           static_cast<std::uint32_t>(volume.moment_resolution()), volume.moment_range(),
+                           static_cast<float>(std::bit_floor(0xFFFFFFFFu / n))};
     // Each probe's rotation from its own stream, as ProbeTracer::trace_probe draws it; its
     // origin where it is now (relocated or not); the blend weight from its history, as
     // ProbeVolume::accumulate computes it.
