@@ -77,7 +77,7 @@ int run_probes(const ProbesArgs& a) {
              grid.counts().x, grid.counts().y, grid.counts().z, grid.probe_count(),
              placement.how, grid.spacing().x, grid.spacing().y, grid.spacing().z, a.probe.sh_order);
 
-  probes::ProbeVolume volume = local_volume(a.probe, grid, decision.kind == TracerKind::vulkan);
+  probes::ProbeVolume volume = local_volume(a.probe, grid);
   const std::uint32_t left_out = leave_out_empty_probes(volume, s);
   const probes::ProbeUpdater& probe_tracer = engine.updater();
 

@@ -216,7 +216,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   }
   const bool gpu_tracer = tracer && tracer->kind == TracerKind::vulkan;
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.baked, placement)
-                                      : local_volume(a.probe, placement.grid, gpu_tracer);
+                                      : local_volume(a.probe, placement.grid);
   const std::uint32_t empty_probes = remote ? 0 : leave_out_empty_probes(volume, s);
 
   GpuRun run;

@@ -1,5 +1,5 @@
 // ddish xr SCENE [--connect tcp://HOST:PORT [--probes FILE] [--wait-ms MS] ...] [--frames N]
-//                [--camera NODE|eye,target,up] [probe, schedule, lighting and raster options]
+//                [--camera NODE|eye,target,up] [--tracer auto|embree|vulkan] [probe, schedule, lighting and raster options]
 //                [--warmup-ms MS] [--warmup-samples N] [--timings FILE]
 //
 // Stereo through OpenXR: the system loader's runtime (XR_RUNTIME_JSON, else the active runtime)
@@ -35,6 +35,7 @@
 #include "app/render_timings.h"
 #include "app/scene_identity.h"
 #include "app/schedule_options.h"
+#include "app/tracer_choice.h"
 #include "app/warmup_options.h"
 #include "app/xr_frames.h"
 #include "display/view_set.h"
@@ -65,6 +66,7 @@ struct XrArgs {
   std::uint32_t msaa = 0;
   std::string tonemap = "filmic";
   bool no_indirect = false;
+  std::string tracer = "auto";  // --tracer, for in-process probes
 };
 
 void check(const XrArgs& a) {
@@ -101,6 +103,11 @@ display::ViewSet eye_set(int width, int height) {
 XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, std::uint64_t identity,
                   std::optional<TimingsFile>& timings) {
   XrRun run;
+  const bool remote = !a.stream.connect.empty();
+  // Decided on the default device before the runtime starts, so a tracer that cannot run is one
+  // error line; checked again on the device the runtime picks.
+  std::optional<TracerDecision> tracer;
+  if (!remote) tracer = choose_tracer(a.tracer, std::nullopt);
   const bool validation = gpu::validation_requested_by_environment();
   xr::Instance xri({.application_name = "ddish", .validation = validation});
   const auto eyes = xri.recommended();
@@ -114,14 +121,8 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
                xri.system_name().c_str(), eyes[0].width, eyes[0].height,
                xri.validation_enabled() ? ", OpenXR core validation on" : "");
 
-  const bool remote = !a.stream.connect.empty();
-  // The budget comes from the runtime each frame; --budget-ms fixes it instead (0: none).
-  std::unique_ptr<InProcessParts> local;
-  if (!remote)
-    local = make_in_process(a.probe, a.schedule, s, a.schedule.budget_ms.value_or(0.0), TracerKind::embree,
-                            std::nullopt);
   probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream.baked, placement)
-                                      : local_volume(a.probe, placement.grid, false);
+                                      : local_volume(a.probe, placement.grid);
   if (!remote) {
     const std::uint32_t n = leave_out_empty_probes(volume, s);
     if (n > 0) {
@@ -132,8 +133,26 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
   {
     gpu::ContextOptions co;
     co.validation = validation;
+    // The GPU probe tracer shares the runtime's device, with ray tracing switched on for it.
+    co.ray_tracing = tracer && tracer->kind == TracerKind::vulkan;
     xr::bind_vulkan(xri, co);
     gpu::Context gpu(co);
+    if (co.ray_tracing && !gpu.device().features().ray_tracing) {
+      const std::string device = gpu.device().info().name;
+      if (a.tracer == "vulkan")
+        throw std::invalid_argument("--tracer vulkan: the OpenXR runtime's device " + device +
+                                    " has no Vulkan ray-tracing pipelines");
+      tracer = TracerDecision{TracerKind::embree, "embree (auto: the runtime's device " + device +
+                                                      " has no ray-tracing pipelines)"};
+    }
+    if (tracer) std::fprintf(stderr, "xr: probe tracer %s\n", tracer->why.c_str());
+    // The in-process probe parts hold Vulkan objects when they trace on the GPU: made after the
+    // context, destroyed before it. The budget comes from the runtime each frame; --budget-ms
+    // fixes it instead (0: none).
+    std::unique_ptr<InProcessParts> local;
+    if (tracer)
+      local = make_in_process(a.probe, a.schedule, s, a.schedule.budget_ms.value_or(0.0), tracer->kind, std::nullopt,
+                              tracer->kind == TracerKind::vulkan ? &gpu.device() : nullptr);
     run.validation = gpu.instance().validation_enabled();
     run.vulkan_log = gpu.instance().shared_validation();
     raster::RendererOptions ro;
@@ -262,6 +281,7 @@ Action make_xr(CLI::App& root) {
       ->check(CLI::ExistingFile);
   add_probe_options(*cmd, a->probe);
   add_visibility_options(*cmd, a->probe);
+  add_tracer_option(*cmd, a->tracer);
   add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
   cmd->get_option("--budget-ms")

@@ -29,17 +29,16 @@ void add_probe_options(CLI::App& cmd, ProbeArgs& a) {
 void add_visibility_options(CLI::App& cmd, ProbeArgs& a) {
   cmd.add_option("--probe-visibility", a.visibility,
                  "R: an R x R octahedral map of distance moments per probe, gathered from the "
-                 "probe rays, for visibility-aware interpolation (no light through walls); 0: off. "
-                 "With the CPU tracer only (the Vulkan tracer interpolates without)")
+                 "probe rays, for visibility-aware interpolation (no light through walls); 0: off")
       ->capture_default_str();
   cmd.add_flag("--probe-relocation", a.relocate,
                "move a probe found inside geometry, or nearer than a tenth of a cell to a surface, "
                "within 0.45 of its cell before classifying it (the probe traces again from there "
-               "once). CPU tracer only");
+               "once)");
 }
 
-probes::ProbeVolume local_volume(const ProbeArgs& a, const probes::ProbeGrid& grid, bool gpu_tracer) {
-  return probes::ProbeVolume(grid, a.sh_order, gpu_tracer ? 0 : a.visibility);
+probes::ProbeVolume local_volume(const ProbeArgs& a, const probes::ProbeGrid& grid) {
+  return probes::ProbeVolume(grid, a.sh_order, a.visibility);
 }
 
 glm::ivec3 parse_grid(const std::string& text) {

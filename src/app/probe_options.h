@@ -58,10 +58,9 @@ void add_visibility_options(CLI::App& cmd, ProbeArgs& args);
 // Throws std::invalid_argument with a one-line message for an impossible combination or value.
 void check_probe_options(const ProbeArgs& args);
 
-// The volume an in-process probe update fills: with moment maps of --probe-visibility when the
-// CPU tracer updates it, without when the Vulkan tracer does (it gathers no distances yet, and a
-// volume without moments is interpolated without visibility).
-probes::ProbeVolume local_volume(const ProbeArgs& args, const probes::ProbeGrid& grid, bool gpu_tracer);
+// The volume an in-process probe update fills, with moment maps of --probe-visibility (both
+// tracers gather them from their probe rays).
+probes::ProbeVolume local_volume(const ProbeArgs& args, const probes::ProbeGrid& grid);
 
 // "X,Y,Z" -> three positive counts; throws std::invalid_argument otherwise.
 glm::ivec3 parse_grid(const std::string& text);

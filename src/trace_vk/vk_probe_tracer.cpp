@@ -31,24 +31,29 @@ constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 constexpr VkBufferUsageFlags kBuildInput = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
                                            VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
                                            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-constexpr std::uint32_t kRtBindings = 17;  // trace_scene.glsl, trace_environment.glsl and probe_trace.rgen
+constexpr std::uint32_t kRtBindings = 18;  // trace_scene.glsl, trace_environment.glsl and probe_trace.rgen
 
 // The shaders' per-work-item records (probe_trace.rgen, probe_project.comp).
 struct ProbeWork {
   glm::vec4 origin{0.0f};  // w: the probe index's bits
   glm::vec4 rotation[3];
 };
+constexpr std::uint32_t kBlendDry = 1;  // report only: relocation's look before the update
 struct Blend {
   std::uint32_t probe = 0;
   float weight = 1.0f;
   std::uint32_t backface_limit = ~0u;
-  std::uint32_t pad = 0;
+  std::uint32_t flags = 0;
 };
 struct Result {
   std::uint32_t backfaces = 0;
   std::uint32_t invalid = 0;
   std::uint32_t inside = 0;
   std::uint32_t rays = 0;
+  float nearest_back = 0.0f;  // of a probe being classified (infinity: none), and its path
+  std::uint32_t back_path = ~0u;
+  float nearest_front = 0.0f;
+  std::uint32_t front_path = ~0u;
 };
 struct TraceParams {
   std::uint32_t samples, work_count, seed, frame;
@@ -59,7 +64,9 @@ struct TraceParams {
   GpuEnvironment environment;
 };
 struct ProjectParams {
-  std::uint32_t samples, order, work_count;
+  std::uint32_t samples, order, work_count, moment_resolution;
+  float moment_range;
+  float moment_scale;  // fixed-point steps per unit: no texel's sum of `samples` values overflows
 };
 
 VkDeviceSize align_up(VkDeviceSize v, VkDeviceSize a) { return (v + a - 1) / a * a; }
@@ -111,7 +118,7 @@ struct VkProbeTracer::Impl {
                                                        layout.materials, layout.instances, layout.deformed);
     make_rt_pipeline();
     project = std::make_unique<gpu::ComputePipeline>(d, gpu::ShaderModule::load(d, "probe_project.comp"),
-                                                     gpu::ComputePipelineDesc{.storage_buffers = 6,
+                                                     gpu::ComputePipelineDesc{.storage_buffers = 8,
                                                                               .push_constant_bytes = sizeof(ProjectParams)});
   }
 
@@ -148,14 +155,22 @@ struct VkProbeTracer::Impl {
   VkStridedDeviceAddressRegionKHR raygen_region{}, miss_region{}, hit_region{}, callable_region{};
   std::unique_ptr<gpu::ComputePipeline> project;
 
+  // Traces and projects the probes of `items` in batches (TraceParams's and ProjectParams's
+  // per-batch fields filled in here), blending into the GPU averages unless their blends are
+  // dry; returns each item's result.
+  std::vector<Result> trace(const std::vector<ProbeWork>& items, const std::vector<Blend>& blends, TraceParams tp,
+                            ProjectParams pp);
+
   // Per-update buffers, grown as needed.
-  std::unique_ptr<gpu::Buffer> lattice, work, paths, blends, results, coefficients;
-  std::unique_ptr<gpu::Buffer> results_readback, coefficients_readback;
+  std::unique_ptr<gpu::Buffer> lattice, work, paths, distances, blends, results, coefficients, moments;
+  std::unique_ptr<gpu::Buffer> results_readback, coefficients_readback, moments_readback;
   std::uint32_t lattice_samples = 0;
 
-  // The volume whose coefficients the GPU buffer mirrors, and its update number then.
+  // The volume whose coefficients and moments the GPU buffers mirror, its update number then
+  // and its moment resolution.
   const probes::ProbeVolume* mirrored = nullptr;
   std::uint64_t mirrored_frame = 0;
+  int mirrored_moment_resolution = -1;
   std::uint64_t rays = 0;
 };
 
@@ -285,7 +300,7 @@ void VkProbeTracer::Impl::write_descriptors() {
   as.pAccelerationStructures = &tlas;
   const std::array<const gpu::Buffer*, kRtBindings - 1> buffers = {
       paths.get(), work.get(), &vertices, &indices, &meshes, &instances, &materials, &emissive, &lights, &albedo,
-      lattice.get(), &textures, &texture_levels, &texels, &environment_texels, &environment_cdf};
+      lattice.get(), &textures, &texture_levels, &texels, &environment_texels, &environment_cdf, distances.get()};
   std::array<VkDescriptorBufferInfo, kRtBindings - 1> infos{};
   std::array<VkWriteDescriptorSet, kRtBindings> writes{};
   writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -304,7 +319,8 @@ void VkProbeTracer::Impl::write_descriptors() {
     writes[i].pBufferInfo = &infos[i - 1];
   }
   vkUpdateDescriptorSets(device.handle(), kRtBindings, writes.data(), 0, nullptr);
-  project->bind_buffers({paths.get(), lattice.get(), work.get(), blends.get(), coefficients.get(), results.get()});
+  project->bind_buffers({paths.get(), lattice.get(), work.get(), blends.get(), coefficients.get(), results.get(),
+                         distances.get(), moments.get()});
 }
 
 VkProbeTracer::VkProbeTracer(const gpu::Device& device, const scene::Scene& scene, const trace::PathOptions& path,
@@ -346,21 +362,80 @@ const gpu::Buffer& VkProbeTracer::coefficient_buffer() const {
 
 std::uint64_t VkProbeTracer::rays_traced() const { return impl_->rays; }
 
+std::vector<Result> VkProbeTracer::Impl::trace(const std::vector<ProbeWork>& items, const std::vector<Blend>& blend_items,
+                                               TraceParams tp, ProjectParams pp) {
+  const std::uint32_t n = tp.samples;
+  std::vector<Result> out;
+  out.reserve(items.size());
+  // In batches: the projection's work groups (one per probe) and the path buffers are bounded.
+  const std::size_t batch = std::clamp<std::size_t>(kMaxBatchPaths / n, 1, kMaxBatchProbes);
+  for (std::size_t first = 0; first < items.size(); first += batch) {
+    const auto count = static_cast<std::uint32_t>(std::min(batch, items.size() - first));
+    ensure(device, work, count * sizeof(ProbeWork), kStorage, gpu::MemoryUse::upload);
+    ensure(device, blends, count * sizeof(Blend), kStorage, gpu::MemoryUse::upload);
+    ensure(device, paths, VkDeviceSize(count) * n * sizeof(glm::vec4), kStorage, gpu::MemoryUse::device_local);
+    ensure(device, distances, VkDeviceSize(count) * n * sizeof(float), kStorage, gpu::MemoryUse::device_local);
+    ensure(device, results, count * sizeof(Result), kStorage, gpu::MemoryUse::device_local);
+    ensure(device, results_readback, count * sizeof(Result), kStorage, gpu::MemoryUse::readback);
+    work->write(items.data() + first, count * sizeof(ProbeWork));
+    blends->write(blend_items.data() + first, count * sizeof(Blend));
+    write_descriptors();
+    tp.work_count = count;
+    pp.work_count = count;
+    runner.run([&](VkCommandBuffer cmd) {
+      // Host writes and earlier submissions (uploads, builds, the last batch) before the trace.
+      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                          VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
+      vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline.get());
+      vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_layout.get(), 0, 1, &set, 0,
+                              nullptr);
+      vkCmdPushConstants(cmd, pipeline_layout.get(), VK_SHADER_STAGE_RAYGEN_BIT_KHR, 0, sizeof(tp), &tp);
+      rt.cmd_trace_rays(cmd, &raygen_region, &miss_region, &hit_region, &callable_region, n, count, 1);
+      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+      project->bind(cmd);
+      project->push(cmd, pp);
+      project->dispatch(cmd, count);
+      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+      gpu::copy_buffer(cmd, *results, *results_readback, count * sizeof(Result));
+      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    });
+    const std::vector<Result> r = results_readback->read<Result>(count);
+    out.insert(out.end(), r.begin(), r.end());
+  }
+  return out;
+}
+
 probes::UpdateStats VkProbeTracer::update(probes::ProbeVolume& volume, std::span<const std::uint32_t> probes) const {
   Impl& im = *impl_;
   const std::vector<std::uint32_t> work = probes::probes_to_update(volume, probes);
   const std::uint32_t n = options_.samples;
   const auto coeffs = static_cast<std::uint32_t>(volume.coefficient_count());
   const VkDeviceSize coefficient_bytes = VkDeviceSize(volume.probe_count()) * coeffs * sizeof(glm::vec3);
+  const auto texels = static_cast<std::uint32_t>(volume.moment_texels());
+  const VkDeviceSize moment_bytes = VkDeviceSize(volume.probe_count()) * texels * sizeof(glm::vec2);
 
-  // The GPU's running average follows this volume; another volume, or one changed elsewhere
+  // The GPU's running averages follow this volume; another volume, or one changed elsewhere
   // since (a file, the CPU tracer), is copied up whole first.
   const bool in_sync = im.mirrored == &volume && im.mirrored_frame == volume.frame() && im.coefficients &&
-                       im.coefficients->size() == coefficient_bytes;
+                       im.coefficients->size() == coefficient_bytes &&
+                       im.mirrored_moment_resolution == volume.moment_resolution();
   Impl::ensure(im.device, im.coefficients, coefficient_bytes, kStorage, gpu::MemoryUse::device_local);
+  Impl::ensure(im.device, im.moments, moment_bytes, kStorage, gpu::MemoryUse::device_local);
   if (!in_sync) {
     const auto all = volume.all_coefficients();
     gpu::upload(im.device, im.runner, *im.coefficients, all.data(), all.size_bytes());
+    if (volume.has_moments()) {
+      std::vector<glm::vec2> moments;
+      moments.reserve(std::size_t(volume.probe_count()) * texels);
+      for (std::uint32_t p = 0; p < volume.probe_count(); ++p) {
+        const auto m = volume.moments(p);
+        moments.insert(moments.end(), m.begin(), m.end());
+      }
+      gpu::upload(im.device, im.runner, *im.moments, moments.data(), moment_bytes);
+    }
   }
 
   volume.begin_update();
@@ -378,105 +453,129 @@ probes::UpdateStats VkProbeTracer::update(probes::ProbeVolume& volume, std::span
       gpu::upload(im.device, im.runner, *im.lattice, lattice.data(), lattice.size() * sizeof(glm::vec4));
       im.lattice_samples = n;
     }
-    // Each probe's rotation from its own stream, as ProbeTracer::trace_probe draws it; the
-    // blend weight from its history, as ProbeVolume::accumulate computes it.
-    std::vector<ProbeWork> items(work.size());
-    std::vector<Blend> blends(work.size());
+    const TraceParams tp{n,
+                         0,
+                         fold(options_.seed),
+                         fold(stats.frame),
+                         im.path.max_bounces,
+                         im.path.rr_min_bounces,
+                         im.path.indirect_clamp,
+                         static_cast<std::uint32_t>(im.layout.lights.size()),
+                         static_cast<std::uint32_t>(im.layout.emissive.size()),
+                         im.sky.r,
+                         im.sky.g,
+                         im.sky.b,
+                         im.layout.environment};
+    const ProjectParams pp{n, static_cast<std::uint32_t>(volume.sh_order()), 0,
+                           static_cast<std::uint32_t>(volume.moment_resolution()), volume.moment_range(),
+                           static_cast<float>(std::bit_floor(0xFFFFFFFFu / n))};
+    // Each probe's rotation from its own stream, as ProbeTracer::trace_probe draws it; its
+    // origin where it is now (relocated or not); the blend weight from its history, as
+    // ProbeVolume::accumulate computes it.
     const std::uint32_t limit = backface_limit(n, options_.backface_threshold);
+    const auto make_work = [&](const std::vector<std::uint32_t>& list, std::vector<ProbeWork>& items,
+                               std::vector<Blend>& blends, std::uint32_t flags) {
+      items.assign(list.size(), ProbeWork{});
+      blends.assign(list.size(), Blend{});
+      for (std::size_t w = 0; w < list.size(); ++w) {
+        const std::uint32_t p = list[w];
+        trace::Sampler sampler(options_.seed, p, stats.frame);
+        const glm::mat3 rotation = probes::random_rotation(sampler);
+        items[w].origin = glm::vec4(volume.position(p), std::bit_cast<float>(p));
+        for (int c = 0; c < 3; ++c) items[w].rotation[c] = glm::vec4(rotation[c], 0.0f);
+        const probes::ProbeState& s = volume.state(p);
+        const probes::BlendHistory history{s.updates, s.samples, std::max<std::uint32_t>(s.age, 1u)};
+        blends[w].probe = p;
+        blends[w].weight = probes::blend_weight(options_.blend, history, n, options_.hysteresis,
+                                                options_.reference_samples ? options_.reference_samples : n);
+        blends[w].backface_limit = s.unclassified() ? limit : ~0u;
+        blends[w].flags = flags;
+      }
+    };
+    std::vector<ProbeWork> items;
+    std::vector<Blend> blends;
+
+    if (options_.relocate) {
+      // Relocation as ProbeTracer does it: a probe being classified first looks around (a dry
+      // pass that blends nothing), moves where its nearest hits say (probes::relocated_offset),
+      // then the update below traces it from there and classifies it by those rays. A probe
+      // that stays traces the same paths again (same streams, same origin), as if kept.
+      std::vector<std::uint32_t> fresh;
+      for (std::uint32_t p : work)
+        if (volume.state(p).unclassified()) fresh.push_back(p);
+      if (!fresh.empty()) {
+        make_work(fresh, items, blends, kBlendDry);
+        const std::vector<Result> looks = im.trace(items, blends, tp, pp);
+        for (std::size_t w = 0; w < fresh.size(); ++w) {
+          const Result& r = looks[w];
+          stats.rays += r.rays;
+          const glm::mat3 rotation(glm::vec3(items[w].rotation[0]), glm::vec3(items[w].rotation[1]),
+                                   glm::vec3(items[w].rotation[2]));
+          const auto direction = [&](std::uint32_t i) {
+            return glm::normalize(rotation * probes::fibonacci_direction(i, n));
+          };
+          probes::NearestHits hits;
+          if (r.back_path != ~0u) {
+            hits.back = r.nearest_back;
+            hits.back_dir = direction(r.back_path);
+          }
+          if (r.front_path != ~0u) {
+            hits.front = r.nearest_front;
+            hits.front_dir = direction(r.front_path);
+          }
+          const bool inside = probes::classify(r.backfaces, n, options_.backface_threshold).inside_geometry;
+          const glm::vec3 moved = probes::relocated_offset(volume, fresh[w], hits, inside);
+          if (moved != volume.offset(fresh[w])) volume.set_offset(fresh[w], moved);
+        }
+      }
+    }
+
+    make_work(work, items, blends, 0);
+    const std::vector<Result> results = im.trace(items, blends, tp, pp);
+    // The updated averages back to the host volume, for its CPU consumers.
+    Impl::ensure(im.device, im.coefficients_readback, coefficient_bytes, kStorage, gpu::MemoryUse::readback);
+    Impl::ensure(im.device, im.moments_readback, moment_bytes, kStorage, gpu::MemoryUse::readback);
+    im.runner.run([&](VkCommandBuffer cmd) {
+      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+      gpu::copy_buffer(cmd, *im.coefficients, *im.coefficients_readback, coefficient_bytes);
+      if (moment_bytes > 0) gpu::copy_buffer(cmd, *im.moments, *im.moments_readback, moment_bytes);
+      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+    });
+
+    // The host volume follows what the GPU did: classification, counts, the blended averages.
+    const auto* gpu_coefficients = static_cast<const glm::vec3*>(im.coefficients_readback->mapped());
+    const auto* gpu_moments = static_cast<const glm::vec2*>(im.moments_readback->mapped());
     for (std::size_t w = 0; w < work.size(); ++w) {
       const std::uint32_t p = work[w];
-      trace::Sampler sampler(options_.seed, p, stats.frame);
-      const glm::mat3 rotation = probes::random_rotation(sampler);
-      items[w].origin = glm::vec4(volume.grid().position(p), std::bit_cast<float>(p));
-      for (int c = 0; c < 3; ++c) items[w].rotation[c] = glm::vec4(rotation[c], 0.0f);
-      const probes::ProbeState& s = volume.state(p);
-      const probes::BlendHistory history{s.updates, s.samples, std::max<std::uint32_t>(s.age, 1u)};
-      blends[w].probe = p;
-      blends[w].weight = probes::blend_weight(options_.blend, history, n, options_.hysteresis,
-                                              options_.reference_samples ? options_.reference_samples : n);
-      blends[w].backface_limit = s.unclassified() ? limit : ~0u;
-    }
-    // In batches: the projection's work groups (one per probe) and the path buffer are bounded.
-    const std::size_t batch = std::clamp<std::size_t>(kMaxBatchPaths / n, 1, kMaxBatchProbes);
-    for (std::size_t first = 0; first < work.size(); first += batch) {
-      const auto count = static_cast<std::uint32_t>(std::min(batch, work.size() - first));
-      Impl::ensure(im.device, im.work, count * sizeof(ProbeWork), kStorage, gpu::MemoryUse::upload);
-      Impl::ensure(im.device, im.blends, count * sizeof(Blend), kStorage, gpu::MemoryUse::upload);
-      Impl::ensure(im.device, im.paths, VkDeviceSize(count) * n * sizeof(glm::vec4), kStorage,
-                   gpu::MemoryUse::device_local);
-      Impl::ensure(im.device, im.results, count * sizeof(Result), kStorage, gpu::MemoryUse::device_local);
-      Impl::ensure(im.device, im.results_readback, count * sizeof(Result), kStorage, gpu::MemoryUse::readback);
-      Impl::ensure(im.device, im.coefficients_readback, coefficient_bytes, kStorage, gpu::MemoryUse::readback);
-      im.work->write(items.data() + first, count * sizeof(ProbeWork));
-      im.blends->write(blends.data() + first, count * sizeof(Blend));
-      im.write_descriptors();
-
-      const TraceParams tp{n,
-                           count,
-                           fold(options_.seed),
-                           fold(stats.frame),
-                           im.path.max_bounces,
-                           im.path.rr_min_bounces,
-                           im.path.indirect_clamp,
-                           static_cast<std::uint32_t>(im.layout.lights.size()),
-                           static_cast<std::uint32_t>(im.layout.emissive.size()),
-                           im.sky.r,
-                           im.sky.g,
-                           im.sky.b,
-                           im.layout.environment};
-      const ProjectParams pp{n, static_cast<std::uint32_t>(volume.sh_order()), count};
-      im.runner.run([&](VkCommandBuffer cmd) {
-        // Host writes and earlier submissions (uploads, builds, the last update) before the trace.
-        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
-                            VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, im.pipeline.get());
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, im.pipeline_layout.get(), 0, 1, &im.set, 0,
-                                nullptr);
-        vkCmdPushConstants(cmd, im.pipeline_layout.get(), VK_SHADER_STAGE_RAYGEN_BIT_KHR, 0, sizeof(tp), &tp);
-        im.rt.cmd_trace_rays(cmd, &im.raygen_region, &im.miss_region, &im.hit_region, &im.callable_region, n, count, 1);
-        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_RAY_TRACING_SHADER_BIT_KHR, VK_ACCESS_SHADER_WRITE_BIT,
-                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
-        im.project->bind(cmd);
-        im.project->push(cmd, pp);
-        im.project->dispatch(cmd, count);
-        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-        gpu::copy_buffer(cmd, *im.results, *im.results_readback, count * sizeof(Result));
-        gpu::copy_buffer(cmd, *im.coefficients, *im.coefficients_readback, coefficient_bytes);
-        gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                            VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-      });
-
-      // The host volume follows what the GPU did: classification, counts, the blended averages.
-      const std::vector<Result> results = im.results_readback->read<Result>(count);
-      const auto* gpu_coefficients = static_cast<const glm::vec3*>(im.coefficients_readback->mapped());
-      for (std::size_t w = 0; w < count; ++w) {
-        const std::uint32_t p = work[first + w];
-        const Result& r = results[w];
-        stats.rays += r.rays;
-        stats.invalid_samples += r.invalid;
-        probes::ProbeState& state = volume.state(p);
-        if (state.unclassified()) {
-          const probes::Classification c = probes::classify(r.backfaces, n, options_.backface_threshold);
-          state.backface_fraction = c.backface_fraction;
-          state.flags = std::uint8_t(state.flags & ~probes::kProbeUnclassified);
-          if (c.inside_geometry) {
-            volume.deactivate(p, true);
-            state.age = 0;
-            ++stats.newly_inactive;
-            continue;
-          }
+      const Result& r = results[w];
+      stats.rays += r.rays;
+      stats.invalid_samples += r.invalid;
+      probes::ProbeState& state = volume.state(p);
+      if (state.unclassified()) {
+        const probes::Classification c = probes::classify(r.backfaces, n, options_.backface_threshold);
+        state.backface_fraction = c.backface_fraction;
+        state.flags = std::uint8_t(state.flags & ~probes::kProbeUnclassified);
+        if (c.inside_geometry) {
+          volume.deactivate(p, true);
+          state.age = 0;
+          ++stats.newly_inactive;
+          continue;
         }
-        state.updates += 1;
-        state.samples += n;
-        state.age = 0;
-        const auto dst = volume.coefficients(p);
-        std::memcpy(dst.data(), gpu_coefficients + std::size_t(p) * coeffs, coeffs * sizeof(glm::vec3));
       }
+      state.updates += 1;
+      state.samples += n;
+      state.age = 0;
+      const auto dst = volume.coefficients(p);
+      std::memcpy(dst.data(), gpu_coefficients + std::size_t(p) * coeffs, coeffs * sizeof(glm::vec3));
+      const auto m = volume.moments(p);
+      if (!m.empty()) std::memcpy(m.data(), gpu_moments + std::size_t(p) * texels, m.size_bytes());
     }
   }
   im.mirrored = &volume;
   im.mirrored_frame = volume.frame();
+  im.mirrored_moment_resolution = volume.moment_resolution();
   im.rays += stats.rays;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;

@@ -1,11 +1,14 @@
 // The probe update on Vulkan ray-tracing pipelines (DESIGN.md, "GPU probe tracing"): the same
 // probes, lattice directions and random rotations as probes::ProbeTracer (the rotation of probe
 // p in update k comes from the same trace::Sampler stream), the same integrator as
-// trace::Tracer (shaders/probe_trace.rgen), and the SH projection, classification and running
-// average on the GPU (shaders/probe_project.comp). The volume's coefficients live in a GPU
-// buffer (coefficient_buffer()) that the update blends into; the host volume gets a copy of the
-// updated probes after each update, for the CPU consumers (network stream, files, the
-// rasterizer's upload today).
+// trace::Tracer (shaders/probe_trace.rgen), and the SH projection, the distance moments
+// (probes::MomentEstimate's rules, from the same paths' first hits), classification and running
+// averages on the GPU (shaders/probe_project.comp). Probes trace from ProbeVolume::position, and
+// with UpdateOptions::relocate a probe being classified first looks around once (a pass that
+// blends nothing), moves by probes::relocated_offset, then updates from there, as ProbeTracer
+// does. The volume's coefficients and moments live in GPU buffers (coefficient_buffer()) that the
+// update blends into; the host volume gets a copy of the updated probes after each update, for
+// the CPU consumers (network stream, files, the rasterizer's upload today).
 //
 // One path per launch item: x = the lattice direction, y = the probe. Paths draw their random
 // numbers from a per-path PCG stream (not the CPU's per-probe stream), so the GPU's probes

@@ -1,10 +1,12 @@
 // `--tracer auto|embree|vulkan`: auto never takes the Vulkan tracer on a CPU device (so the
 // suite traces with Embree on lavapipe), vulkan traces the probes on lavapipe 25 under the
-// validation layer (a textured, alpha-masked scene, an environment map and a skinned mesh that
-// bends from frame to frame too), and on a device without ray tracing `--tracer vulkan` is one
+// validation layer (with distance moments and relocation; a textured, alpha-masked scene, an
+// environment map and a skinned mesh that bends from frame to frame too), and on a device without ray tracing `--tracer vulkan` is one
 // error line and exit 2.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "cli_runner.h"
@@ -43,6 +45,14 @@ TEST_F(TracerCli, VulkanTracesTheProbesWithValidationClean) {
   EXPECT_NE(r.out.find("tracer   vulkan on "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("update 2/2: "), std::string::npos) << r.out;
   EXPECT_EQ(r.err.find("VUID"), std::string::npos) << r.err;  // the layer reports to stderr
+  // It gathers --probe-visibility's distance moments (8 by default) into the file, as Embree does.
+  std::ifstream summary(dir_ / "v.ddprobes.json");
+  const std::string json((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  EXPECT_NE(json.find("\"moment_resolution\": 8"), std::string::npos) << json;
+  const cli::Result moved = run("probes " + cli::cornell() + " --grid 4,4,4 --probe-samples 32 --tracer vulkan "
+                                "--probe-relocation", "DDISH_VALIDATION=1");
+  ASSERT_EQ(moved.code, 0) << moved.err;
+  EXPECT_EQ(moved.err.find("VUID"), std::string::npos) << moved.err;
   const cli::Result render = run("render " + cli::cornell() + " --width 32 --height 32 --probe-samples 16 --warmup-ms 0 "
                                  "--grid 3,3,3 --tracer vulkan --out " + path("out"));
   ASSERT_EQ(render.code, 0) << render.err;
@@ -65,6 +75,36 @@ TEST_F(TracerCli, VulkanTracesTheProbesWithValidationClean) {
   ASSERT_EQ(skin.code, 0) << skin.err;
   EXPECT_NE(skin.err.find("render: probe tracer vulkan on "), std::string::npos) << skin.err;
   EXPECT_EQ(skin.err.find("VUID"), std::string::npos) << skin.err;
+}
+
+// The Vulkan tracer's distance moments reach the rasterizer: room B of scenes/thin_wall.gltf
+// (dark behind a 0.05 m wall; no light reaches it, so all it shows came through the wall in the
+// probes) rendered with probes from `--tracer vulkan`, with and without visibility. What remains
+// with visibility is the method's (raster.ThinWallTest explains where it comes from): at these
+// settings (one update of 128 paths, 15 bounces) 1.40 % of the leak with Vulkan probes and
+// 1.35 % with Embree's (measured while writing this). The test allows 5 %: a volume without
+// moments would keep all of the leak.
+TEST_F(TracerCli, VulkanProbesWithVisibilityStopTheLeakThroughAThinWall) {
+  if (!ray_tracing()) GTEST_SKIP() << "the default Vulkan device has no ray-tracing pipelines";
+  const auto mean = [&](int visibility) {
+    const std::string out = "wall_" + std::to_string(visibility);
+    const cli::Result r = run("render " + cli::quote(std::string(DDISH_SOURCE_DIR) + "/scenes/thin_wall.gltf") +
+                                  " --width 64 --height 48 --probe-samples 128 --warmup-ms 0 --tonemap linear "
+                                  "--tracer vulkan --probe-visibility " + std::to_string(visibility) + " --out " + path(out),
+                              "DDISH_VALIDATION=1");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err.find("VUID"), std::string::npos) << r.err;
+    const ddish::metrics::Image image = ddish::metrics::read_image(dir_ / out / "frame_0000.exr");
+    double sum = 0.0;
+    for (const glm::vec3& p : image.pixels()) sum += double(p.r + p.g + p.b) / 3.0;
+    return sum / double(image.pixels().size());
+  };
+  const double leak = mean(0);
+  const double kept = mean(8);
+  std::printf("room B with Vulkan probes: without visibility %.4g, with %.4g (%.3f %% of the leak)\n", leak, kept,
+              100.0 * kept / leak);
+  EXPECT_GT(leak, 0.0);
+  EXPECT_LT(kept, 0.05 * leak) << "with visibility the light stays in room A";
 }
 
 TEST_F(TracerCli, AnUnknownTracerIsOneErrorLineAndSoIsVulkanWithoutRayTracing) {

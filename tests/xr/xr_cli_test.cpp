@@ -175,6 +175,40 @@ TEST_F(XrCli, LossPendingIsOneLineAndNoLeak) {
   EXPECT_EQ(states.back(), "LOSS_PENDING");
 }
 
+// `--tracer` as on render, probes and serve (tests/app/tracer_cli_test.cpp): auto is Embree on a
+// CPU device; vulkan traces the probes on the runtime's device (lavapipe 25 has ray tracing) with
+// both validation layers quiet, and on a device without ray tracing is one error line and exit 2,
+// as an unknown tracer is.
+TEST_F(XrCli, TheTracerOptionPicksTheProbeTracer) {
+  const std::string script = R"({"eye_width": 32, "eye_height": 36})";
+  const cli::Result automatic = run("xr " + cli::cornell() + " --frames 2 --probe-samples 16 --grid 2,2,2 --warmup-ms 0",
+                                    runtime_env(script));
+  ASSERT_EQ(automatic.code, 0) << automatic.err;
+  EXPECT_NE(automatic.err.find("xr: probe tracer embree (auto: "), std::string::npos) << automatic.err;
+  const cli::Result bad = run("xr " + cli::cornell() + " --tracer optix", runtime_env(script));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_EQ(count_lines(bad.err, "ddish: error: "), 1) << bad.err;
+  EXPECT_NE(bad.err.find("--tracer"), std::string::npos) << bad.err;
+
+  const cli::Result devices = run("devices");
+  const auto at = devices.out.find("[default]");
+  if (at == std::string::npos || devices.out.find("ray tracing            pipelines", at) == std::string::npos) {
+    // Mesa 22 lavapipe (VK_DRIVER_FILES picks it): one error line, exit 2.
+    const cli::Result none = run("xr " + cli::cornell() + " --frames 2 --grid 2,2,2 --tracer vulkan", runtime_env(script));
+    EXPECT_EQ(none.code, 2);
+    EXPECT_EQ(count_lines(none.err, "ddish: error: --tracer vulkan: "), 1) << none.err;
+    EXPECT_EQ(count_lines(none.err, "ddish: error: "), 1) << none.err;
+    return;
+  }
+  const cli::Result gpu = run("xr " + cli::cornell() + " --frames 2 --probe-samples 16 --grid 2,2,2 --warmup-ms 0 "
+                              "--tracer vulkan",
+                              runtime_env(script) + " DDISH_VALIDATION=1");
+  ASSERT_EQ(gpu.code, 0) << gpu.err;
+  EXPECT_NE(gpu.err.find("xr: probe tracer vulkan on "), std::string::npos) << gpu.err;
+  EXPECT_NE(gpu.err.find("xr: validation: 0 OpenXR messages, 0 Vulkan errors"), std::string::npos) << gpu.err;
+  EXPECT_EQ(rendered(session()).size(), 2u);
+}
+
 // A display period switching from 90 Hz to 72 Hz at frame 20: the budget each frame hands the
 // scheduler is the frame's period, from the frame after the switch on (in the timings, both in
 // the xr records and in the scheduler's own record).
