@@ -38,7 +38,7 @@ scene::PlanItem empty_probes_item(std::uint32_t left_out, const probes::ProbeGri
 }
 
 probes::ProbeVolume starting_volume(const ProbeArgs& probe, const std::string& baked, const Placement& placement) {
-  if (baked.empty()) return probes::ProbeVolume(placement.grid, probe.sh_order);
+  if (baked.empty()) return probes::ProbeVolume(placement.grid, probe.sh_order, probe.visibility);
   const probes::VolumeFile file = probes::read_volume_file(baked);
   probes::ProbeVolume volume = file.to_volume();
   if (volume.grid().counts() != placement.grid.counts() || volume.sh_order() != probe.sh_order)

@@ -118,7 +118,11 @@ struct ProbeClient::Impl {
     // camera's step before its next subscription takes effect.
     margin = 0.25f * std::max({spacing.x, spacing.y, spacing.z});
     // A frame cannot hold more than a brick's probes: anything larger is a lie.
-    limits.max_payload_bytes = std::size_t(kBrickEdge * kBrickEdge * kBrickEdge) * (5 + 1 + 152) + 64;
+    // (per probe: 3 index varints, a flag byte, the largest record and an offset).
+    limits.max_payload_bytes =
+        std::size_t(kBrickEdge * kBrickEdge * kBrickEdge) *
+            (3 * 5 + 1 + 152 + moment_bytes(kMaxWireMomentResolution * kMaxWireMomentResolution) + 12) +
+        64;
     const std::vector<Endpoint> endpoints = parse_endpoint_list(o.connect);
     std::optional<Endpoint> relay;
     if (!o.relay.empty()) relay = parse_endpoint(o.relay);
@@ -180,11 +184,15 @@ struct ProbeClient::Impl {
   }
   void count_reject(RejectKind kind, const std::string& detail, const std::string& from) {
     ++rejects[std::size_t(kind)];
-    if (logged.insert(int(kind)).second)
-      log(kind == RejectKind::kSceneMismatch
-              ? "refusing the probe server at " + from + ": " + detail
-              : "dropped a malformed probe message (" + reject_name(kind) + "): " + detail +
-                    "; further ones are counted");
+    if (!logged.insert(int(kind)).second) return;
+    if (kind == RejectKind::kSceneMismatch)
+      log("refusing the probe server at " + from + ": " + detail);
+    else if (kind == RejectKind::kBadVersion)
+      log("refusing the probe server at " + from + ": it speaks another version of the probe stream (" +
+          detail + "); run the same ddish release on both sides");
+    else
+      log("dropped a malformed probe message (" + reject_name(kind) + "): " + detail +
+          "; further ones are counted");
   }
 
   void request_snapshots(std::int64_t now) {
@@ -214,13 +222,27 @@ struct ProbeClient::Impl {
     ProbeMirror& mirror = *mirrors[brick];
     if (!mirror.matches(r.frame.header)) {
       const FrameHeader& h = r.frame.header;
-      count_reject(RejectKind::kSceneMismatch,
-                   fmt::format("it streams another scene or grid (identity {:016x}, grid {}x{}x{}, L{}; "
-                               "this scene is {:016x}, grid {}x{}x{}, L{})",
-                               h.scene_id, h.counts[0], h.counts[1], h.counts[2], h.sh_order, scene_id,
-                               volume.grid().counts().x, volume.grid().counts().y,
-                               volume.grid().counts().z, volume.sh_order()),
-                   from);
+      const bool same_scene = h.scene_id == scene_id && h.sh_order == volume.sh_order() &&
+                              h.counts[0] == std::uint32_t(volume.grid().counts().x) &&
+                              h.counts[1] == std::uint32_t(volume.grid().counts().y) &&
+                              h.counts[2] == std::uint32_t(volume.grid().counts().z);
+      if (same_scene)
+        count_reject(RejectKind::kSceneMismatch,
+                     fmt::format("its probes carry {}x{} distance-moment maps over {:g} m, this client's "
+                                 "volume {}x{} over {:g} m (the server's --probe-visibility is told to "
+                                 "clients that connect while it is up)",
+                                 h.moment_resolution, h.moment_resolution, h.moment_range,
+                                 volume.moment_resolution(), volume.moment_resolution(),
+                                 volume.has_moments() ? volume.moment_range() : 0.0f),
+                     from);
+      else
+        count_reject(RejectKind::kSceneMismatch,
+                     fmt::format("it streams another scene or grid (identity {:016x}, grid {}x{}x{}, L{}; "
+                                 "this scene is {:016x}, grid {}x{}x{}, L{})",
+                                 h.scene_id, h.counts[0], h.counts[1], h.counts[2], h.sh_order, scene_id,
+                                 volume.grid().counts().x, volume.grid().counts().y,
+                                 volume.grid().counts().z, volume.sh_order()),
+                     from);
       return false;
     }
     const bool keyframe = r.frame.header.kind == FrameKind::kKeyframe;
@@ -232,6 +254,11 @@ struct ProbeClient::Impl {
     const ApplyOutcome outcome = mirror.apply(r.frame, changed);
     if (outcome == ApplyOutcome::kOutside) {
       count_reject(RejectKind::kBadIndex, fmt::format("probes outside brick {} under its topic", brick), from);
+      return false;
+    }
+    if (outcome == ApplyOutcome::kBadOffset) {
+      count_reject(RejectKind::kBadVisibility,
+                   fmt::format("a relocation offset beyond {:g} of a cell", probes::kMaxRelocation), from);
       return false;
     }
     if (outcome == ApplyOutcome::kGap) mirror.desync();  // lost a delta or a new server: re-snapshot

@@ -1,5 +1,6 @@
 #include "net/probe_encoding.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "net/compact_sh.h"
@@ -121,6 +122,40 @@ bool decode_probe(Encoding encoding, int order, std::span<const std::uint8_t> in
     case Encoding::kCompact: return decode_compact(in, order, coefficients);
   }
   return false;
+}
+
+namespace {
+std::uint16_t moment_half(float v, bool& exact) {
+  if (!(v >= 0.0f && v <= 1.0f)) {
+    exact = false;
+    v = std::isnan(v) ? 1.0f : std::clamp(v, 0.0f, 1.0f);
+  }
+  return sh::float_to_half(v);
+}
+}  // namespace
+
+bool encode_moments(std::span<const glm::vec2> moments, std::span<std::uint8_t> out) {
+  bool exact = true;
+  const std::size_t n = moments.size();
+  for (std::size_t t = 0; t < n; ++t) {
+    store16(out, t, moment_half(moments[t].x, exact));
+    store16(out, n + t, moment_half(moments[t].y, exact));
+  }
+  return exact;
+}
+
+bool decode_moments(std::span<const std::uint8_t> in, std::span<glm::vec2> moments, std::size_t* bad) {
+  const std::size_t n = moments.size();
+  for (std::size_t t = 0; t < 2 * n; ++t) {
+    // 0x0000 .. 0x3c00 are the halves in [0, 1]: no sign bit, nothing above one.
+    const std::uint16_t h = load16(in, t);
+    if (h > 0x3c00u) {
+      if (bad) *bad = t % n;
+      return false;
+    }
+    moments[t % n][int(t / n)] = sh::half_to_float(h);
+  }
+  return true;
 }
 
 }  // namespace ddish::net

@@ -51,7 +51,7 @@ struct Server {
 
   Server(const std::string& bind, std::uint64_t scene, std::uint64_t stream,
          std::optional<CurveServerKeys> curve = std::nullopt)
-      : published(grid(), 2, scene, stream, {.encoding = Encoding::kHalf}),
+      : published(volume, scene, stream, {.encoding = Encoding::kHalf}),
         server({.bind = bind, .client_timeout_ms = 500, .curve = std::move(curve)}) {}
 
   // One tick: every probe traced anew, the delta published, requests answered for `ms`.
