@@ -120,7 +120,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
   if (!remote)
     local = make_in_process(a.probe, a.schedule, s, a.schedule.budget_ms.value_or(0.0), TracerKind::embree,
                             std::nullopt);
-  probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream.baked, placement)
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream, placement, "xr")
                                       : local_volume(a.probe, placement.grid, false);
   if (!remote) {
     const std::uint32_t n = leave_out_empty_probes(volume, s);

@@ -75,6 +75,45 @@ std::vector<std::string> dropped_endpoints(zmq::socket_t& events) {
 
 }  // namespace
 
+std::optional<FrameHeader> ask_stream_header(const ClientOptions& options, int wait_ms, std::string* problem) {
+  zmq::context_t context(1);
+  std::vector<zmq::socket_t> sockets;
+  std::string why = fmt::format("no answer within {} ms", wait_ms);
+  try {
+    for (const Endpoint& e : parse_endpoint_list(options.connect)) {
+      zmq::socket_t& s = sockets.emplace_back(context, zmq::socket_type::dealer);
+      set_common(s, options, true);
+      s.connect(e.requests());
+      s.send(zmq::str_buffer("INFO"), zmq::send_flags::dontwait);  // queued until connected
+    }
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms);
+    while (true) {
+      std::vector<zmq::pollitem_t> items;
+      for (zmq::socket_t& s : sockets) items.push_back({s.handle(), 0, ZMQ_POLLIN, 0});
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now());
+      if (left.count() <= 0) break;
+      zmq::poll(items.data(), items.size(), left);
+      for (zmq::socket_t& s : sockets) {
+        std::vector<zmq::message_t> parts;
+        if (!zmq::recv_multipart(s, std::back_inserter(parts), zmq::recv_flags::dontwait)) continue;
+        if (parts.size() != 2 || parts[0].to_string() != "INFO") {
+          why = "an INFO reply of the wrong shape";
+          continue;
+        }
+        const DecodeResult r = decode_frame(bytes_of(parts[1]));
+        if (r.ok && r.frame.header.kind == FrameKind::kKeyframe && r.frame.updated.empty())
+          return r.frame.header;
+        why = r.ok ? "an INFO reply that is not an empty keyframe" : reject_name(r.reject) + ": " + r.detail;
+      }
+    }
+  } catch (const zmq::error_t& e) {
+    if (e.num() != EINTR) throw;
+    why = "interrupted";
+  }
+  if (problem) *problem = why;
+  return std::nullopt;
+}
+
 struct ProbeClient::Impl {
   // One server: its request socket and its clocks.
   struct Server {
@@ -229,8 +268,8 @@ struct ProbeClient::Impl {
       if (same_scene)
         count_reject(RejectKind::kSceneMismatch,
                      fmt::format("its probes carry {}x{} distance-moment maps over {:g} m, this client's "
-                                 "volume {}x{} over {:g} m (the server's --probe-visibility is told to "
-                                 "clients that connect while it is up)",
+                                 "volume {}x{} over {:g} m (a client sizes its maps by the server that "
+                                 "answers as it starts: restart it while the server is up)",
                                  h.moment_resolution, h.moment_resolution, h.moment_range,
                                  volume.moment_resolution(), volume.moment_resolution(),
                                  volume.has_moments() ? volume.moment_range() : 0.0f),

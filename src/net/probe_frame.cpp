@@ -81,7 +81,7 @@ std::vector<std::uint8_t> encode_frame(const FrameHeader& h, const FrameParts& p
   const std::size_t per_probe = record_bytes(h);
   if (parts.records.size() != parts.updated.size() * per_probe ||
       parts.deactivated.size() != parts.deactivated_flags.size() ||
-      parts.relocated.size() != parts.offsets.size() || parts.relocated.size() > parts.updated.size())
+      parts.relocated.size() != parts.offsets.size() || parts.relocated.size() > parts.updated.size() + parts.deactivated.size())
     throw std::invalid_argument("encode_frame: probe data does not match the index lists");
   std::vector<std::uint8_t> payload;
   payload.reserve(parts.updated.size() * (per_probe + 1) + parts.deactivated.size() * 2 +
@@ -249,9 +249,10 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
     return reject(RejectKind::kSizeMismatch,
                   fmt::format("{} updated + {} deactivated probes in a grid of {}", updated,
                               deactivated, probes));
-  if (relocated > updated)
+  if (relocated > std::uint64_t(updated) + deactivated)
     return reject(RejectKind::kSizeMismatch,
-                  fmt::format("{} relocated probes among {} updated", relocated, updated));
+                  fmt::format("{} relocated probes among {} updated and {} deactivated", relocated,
+                              updated, deactivated));
   const std::size_t body = message.size() - kFrameHeaderBytes;
   if (body < payload_bytes)
     return reject(RejectKind::kTruncated,
@@ -304,12 +305,15 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
                     fmt::format("probe {} both updated and deactivated", f.updated[a]));
     f.updated[a] < f.deactivated[b] ? ++a : ++b;
   }
-  // Relocated probes are updated ones (an offset travels with the probe's record).
-  for (std::size_t a = 0, b = 0; b < f.relocated.size(); ++a) {
-    if (a == f.updated.size() || f.updated[a] > f.relocated[b])
+  // Relocated probes are updated or deactivated ones (an offset travels with the probe's news).
+  for (std::size_t a = 0, d = 0, b = 0; b < f.relocated.size();) {
+    const std::uint32_t want = f.relocated[b];
+    while (a < f.updated.size() && f.updated[a] < want) ++a;
+    while (d < f.deactivated.size() && f.deactivated[d] < want) ++d;
+    if (!(a < f.updated.size() && f.updated[a] == want) && !(d < f.deactivated.size() && f.deactivated[d] == want))
       return reject(RejectKind::kBadVisibility,
-                    fmt::format("probe {} has an offset but is not updated", f.relocated[b]));
-    if (f.updated[a] == f.relocated[b]) ++b;
+                    fmt::format("probe {} has an offset but is neither updated nor deactivated", want));
+    ++b;
   }
   std::span<const std::uint8_t> flag_bytes, record_bytes_in;
   if (!p.bytes(deactivated, flag_bytes))

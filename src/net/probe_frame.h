@@ -24,17 +24,19 @@
 //       72    4 f32 moment range, metres (ProbeVolume::moment_range; 0 when R is 0)
 //       76    4 u32 updated probes (coefficients and moments in this message)
 //       80    4 u32 deactivated probes (deltas only: probes that became inactive)
-//       84    4 u32 relocated probes: updated probes whose offset is not zero
+//       84    4 u32 relocated probes: updated or deactivated probes whose offset is not zero
 //       88    4 u32 payload bytes as sent (after the header; the message is exactly 96 + this)
 //       92    4 u32 payload bytes uncompressed (equal to the above without zstd)
 //   payload: updated probe indices, deactivated probe indices, relocated probe indices (a
-//   subset of the updated ones), each an increasing list sent as LEB128 varints of the gaps
+//   subset of the two), each an increasing list sent as LEB128 varints of the gaps
 //   (first index, then index - previous - 1); one flag byte per deactivated probe (bit 0 set,
 //   bit 1 inside geometry, nothing else); per updated probe, in index order, its record
 //   (record_bytes): the coefficients, probe_bytes(encoding, order), then its moment map,
 //   R^2 fp16 mean distances and then R^2 fp16 mean squared distances, each / range (or range^2),
 //   in [0, 1]; then per relocated probe its offset from its grid position, 3 f32 metres.
-//   An updated probe that is not relocated has a zero offset. Nothing after.
+//   An updated or deactivated probe that is not relocated has a zero offset (an inactive
+//   probe's offset matters too: the shader weighs all 8 probes of a cell before it folds the
+//   weights). Nothing after.
 #pragma once
 
 #include <cstdint>
@@ -91,7 +93,7 @@ struct ProbeFrame {
   std::vector<std::uint32_t> deactivated;    // increasing, disjoint from `updated`
   std::vector<std::uint8_t> deactivated_flags;  // one per deactivated probe
   std::vector<glm::vec2> moments;            // updated.size() × R^2 (mean d, mean d^2) / range
-  std::vector<std::uint32_t> relocated;      // increasing, a subset of `updated`
+  std::vector<std::uint32_t> relocated;      // increasing, a subset of updated ∪ deactivated
   std::vector<glm::vec3> offsets;            // one per relocated probe, finite, not zero, metres
 };
 
@@ -118,7 +120,7 @@ enum class RejectKind : std::uint8_t {
   kDecompression,    // zstd failed, or its size differs from the header's
   kSceneMismatch,    // well formed, but of another scene, grid, order or moment map (the client's)
   kBadVisibility,    // a moment outside [0, 1] or not finite; an offset not finite, zero, of a
-                     // probe not updated, or (the client's check) beyond kMaxRelocation cells
+                     // probe neither updated nor deactivated, or (the client's check) beyond kMaxRelocation cells
 };
 inline constexpr int kRejectKindCount = 10;
 std::string reject_name(RejectKind kind);

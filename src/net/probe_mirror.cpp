@@ -20,16 +20,19 @@ void set_probe(probes::ProbeVolume& volume, std::uint32_t i, const glm::vec3* co
   s.age = 0;
 }
 
-void deactivate_probe(probes::ProbeVolume& volume, std::uint32_t i, bool inside_geometry) {
+void deactivate_probe(probes::ProbeVolume& volume, std::uint32_t i, bool inside_geometry,
+                      const glm::vec3& offset) {
   volume.deactivate(i, inside_geometry);
-  volume.set_offset(i, glm::vec3(0.0f));
+  volume.set_offset(i, offset);
 }
 
-// The offset of each updated probe (zero unless relocated).
-std::vector<glm::vec3> offsets_of(const ProbeFrame& f) {
-  std::vector<glm::vec3> out(f.updated.size(), glm::vec3(0.0f));
-  for (std::size_t a = 0, b = 0; a < f.updated.size() && b < f.relocated.size(); ++a)
-    if (f.updated[a] == f.relocated[b]) out[a] = f.offsets[b++];
+// The offset of each probe of `list` (zero unless relocated).
+std::vector<glm::vec3> offsets_of(const std::vector<std::uint32_t>& list, const ProbeFrame& f) {
+  std::vector<glm::vec3> out(list.size(), glm::vec3(0.0f));
+  for (std::size_t a = 0, b = 0; a < list.size() && b < f.relocated.size(); ++a) {
+    while (b < f.relocated.size() && f.relocated[b] < list[a]) ++b;
+    if (b < f.relocated.size() && f.relocated[b] == list[a]) out[a] = f.offsets[b];
+  }
   return out;
 }
 
@@ -66,7 +69,8 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
   const glm::vec3 bound = probes::kMaxRelocation * volume_.grid().spacing();
   for (const glm::vec3& o : f.offsets)
     if (glm::any(glm::greaterThan(glm::abs(o), bound))) return ApplyOutcome::kBadOffset;
-  const std::vector<glm::vec3> offsets = offsets_of(f);
+  const std::vector<glm::vec3> offsets = offsets_of(f.updated, f);
+  const std::vector<glm::vec3> deactivated_offsets = offsets_of(f.deactivated, f);
   const std::size_t texels = std::size_t(volume_.moment_texels());
   if (f.header.kind == FrameKind::kKeyframe) {
     kept_ = 0;
@@ -81,13 +85,14 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
         set_probe(volume_, i, f.coefficients.data() + next * n, f.moments.data() + next * texels, offsets[next]);
         ++next;
       } else if (next_off < f.deactivated.size() && f.deactivated[next_off] == i) {
-        deactivate_probe(volume_, i, (f.deactivated_flags[next_off] & kWireFlagInsideGeometry) != 0);
+        deactivate_probe(volume_, i, (f.deactivated_flags[next_off] & kWireFlagInsideGeometry) != 0,
+                         deactivated_offsets[next_off]);
         ++next_off;
       } else if (restarted && volume_.state(i).active() && volume_.state(i).updates > 0) {
         ++kept_;
         continue;
       } else {
-        deactivate_probe(volume_, i, false);
+        deactivate_probe(volume_, i, false, glm::vec3(0.0f));
       }
       changed.push_back(i);
     }
@@ -98,7 +103,8 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
     for (std::size_t k = 0; k < f.updated.size(); ++k)
       set_probe(volume_, f.updated[k], f.coefficients.data() + k * n, f.moments.data() + k * texels, offsets[k]);
     for (std::size_t k = 0; k < f.deactivated.size(); ++k)
-      deactivate_probe(volume_, f.deactivated[k], (f.deactivated_flags[k] & kWireFlagInsideGeometry) != 0);
+      deactivate_probe(volume_, f.deactivated[k], (f.deactivated_flags[k] & kWireFlagInsideGeometry) != 0,
+                       deactivated_offsets[k]);
     std::merge(f.updated.begin(), f.updated.end(), f.deactivated.begin(), f.deactivated.end(),
                std::back_inserter(changed));
   }

@@ -39,6 +39,7 @@ PublishedProbes::PublishedProbes(const probes::ProbeVolume& volume, std::uint64_
   source_moments_.assign(probes_.size() * texels_, glm::vec2(0.0f));
   held_offsets_.assign(probes_.size(), glm::vec3(0.0f));
   announced_.assign(probes_.size(), kWireFlagInactive);
+  announced_offsets_.assign(probes_.size(), glm::vec3(0.0f));
   grid_probes_ = grid.probe_count();
 }
 
@@ -67,11 +68,17 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
                                              (state.inside_geometry() ? kWireFlagInsideGeometry : 0));
       // Announced once: a probe subscribers held, or whose state is not what they assume of a
       // probe never sent (inactive, not inside geometry: left out, say).
-      if (held_[k] || announced_[k] != wire) {
+      const glm::vec3& offset = volume.offset(i);
+      if (held_[k] || announced_[k] != wire || announced_offsets_[k] != offset) {
         held_[k] = 0;
         announced_[k] = wire;
+        announced_offsets_[k] = offset;
         deactivated.push_back(i);
         flags.push_back(wire);
+        if (offset != glm::vec3(0.0f)) {
+          relocated.push_back(i);
+          offsets.push_back(offset);
+        }
       }
       continue;
     }
@@ -108,6 +115,7 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
     held_offsets_[k] = offset;
     held_[k] = 1;
     announced_[k] = kWireFlagInactive;  // what an unlisted probe is, should it go again
+    announced_offsets_[k] = glm::vec3(0.0f);
     updated.push_back(i);
     bytes.insert(bytes.end(), out, out + record_bytes_);
     if (offset != glm::vec3(0.0f)) {
@@ -133,15 +141,27 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
   return message;
 }
 
+std::vector<std::uint8_t> PublishedProbes::description() const {
+  FrameHeader h = header_;
+  h.kind = FrameKind::kKeyframe;
+  h.base_frame = h.frame;
+  h.zstd = false;
+  return encode_frame(h, FrameParts{});
+}
+
 std::vector<std::uint8_t> PublishedProbes::snapshot() const {
   std::vector<std::uint32_t> updated, relocated, deactivated;
   std::vector<std::uint8_t> bytes, flags;
   std::vector<glm::vec3> offsets;
   for (std::size_t k = 0; k < held_.size(); ++k) {
     if (!held_[k]) {
-      if (announced_[k] != kWireFlagInactive) {  // inside geometry
-        deactivated.push_back(probes_[k]);
+      if (announced_[k] != kWireFlagInactive || announced_offsets_[k] != glm::vec3(0.0f)) {
+        deactivated.push_back(probes_[k]);  // inside geometry, or relocated before it was found so
         flags.push_back(announced_[k]);
+        if (announced_offsets_[k] != glm::vec3(0.0f)) {
+          relocated.push_back(probes_[k]);
+          offsets.push_back(announced_offsets_[k]);
+        }
       }
       continue;
     }

@@ -18,7 +18,9 @@
 // probes with their records (the others are inactive for the client) and, as deactivated, the
 // probes found inside geometry; a delta announces a probe that became inactive once, with its
 // flags, never its coefficients (a probe never sent is announced only when found inside
-// geometry: a plain inactive one, left out say, is what an unlisted probe already is). The snapshot (a keyframe of the last
+// geometry or with a relocation offset: a plain inactive one at its grid position, left out say,
+// is what an unlisted probe already is). Inactive probes' offsets travel too: the shader weighs
+// all 8 probes of a cell, active or not, before it folds the weights. The snapshot (a keyframe of the last
 // published frame) is built from the exact bytes that were sent, so a late joiner holds what
 // every other subscriber holds and later deltas keep the same bound for it.
 #pragma once
@@ -67,6 +69,11 @@ class PublishedProbes {
   // the first publish).
   std::vector<std::uint8_t> snapshot() const;
 
+  // An empty keyframe of this stream (no probes): its header describes the stream (grid, SH
+  // order, moment resolution and range) for a client that sizes its volume before it takes any
+  // frame (the server's INFO reply, probe_server.h).
+  std::vector<std::uint8_t> description() const;
+
   std::uint64_t frame() const { return header_.frame; }
   std::uint32_t held_probes() const;
   const StreamOptions& options() const { return options_; }
@@ -86,6 +93,7 @@ class PublishedProbes {
   std::vector<glm::vec2> source_moments_; // per probe: the moments they were sent from
   std::vector<glm::vec3> held_offsets_;   // per probe: the offset last sent
   std::vector<std::uint8_t> announced_;   // per probe not held: the flags subscribers hold
+  std::vector<glm::vec3> announced_offsets_;  // ... and the offset
 };
 
 }  // namespace ddish::net

@@ -1,6 +1,6 @@
 // libFuzzer target for the probe stream's decoder (net/probe_frame.h): any byte string is either
 // rejected with a reason or decodes to a frame whose every field is in range (indices, finite
-// coefficients, moments in [0, 1], finite non-zero offsets of updated probes); a decoded frame
+// coefficients, moments in [0, 1], finite non-zero offsets of updated or deactivated probes); a decoded frame
 // re-encodes to a message that decodes to the same indices, moments and offsets, and applies to
 // a mirror of its grid and moment resolution, or is refused there for an offset beyond
 // kMaxRelocation cells. Seeds: tests/fuzz/corpus/probe_frame/ (keyframes and deltas in every
@@ -40,7 +40,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
   require(f.moments.size() == f.updated.size() * std::size_t(f.header.moment_texels()));
   for (const glm::vec2& m : f.moments) require(m.x >= 0.0f && m.x <= 1.0f && m.y >= 0.0f && m.y <= 1.0f);
-  require(f.relocated.size() == f.offsets.size() && f.relocated.size() <= f.updated.size());
+  require(f.relocated.size() == f.offsets.size() &&
+          f.relocated.size() <= f.updated.size() + f.deactivated.size());
   for (const glm::vec3& o : f.offsets)
     require(std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z) && o != glm::vec3(0.0f));
   const net::DecodeResult again = net::decode_frame(net::encode_frame(f), limits);

@@ -211,7 +211,7 @@ TEST(FrameReject, SizeMismatch) {
   put32(m, 76, 6);  // one probe fewer than the payload carries
   expect_reject(m, RejectKind::kSizeMismatch);
   m = good_message();
-  put32(m, 84, 8);  // more relocated probes than updated ones
+  put32(m, 84, 10);  // more relocated probes than updated and deactivated ones
   expect_reject(m, RejectKind::kSizeMismatch);
   m = good_message();
   put32(m, 84, 1);  // one relocated probe fewer than the payload carries: the lists misalign
@@ -280,10 +280,12 @@ TEST(FrameReject, BadVisibility) {
   f.offsets[0] = glm::vec3(0.0f);  // listed, but not relocated: no encoder writes it
   expect_reject(encode_frame(f), RejectKind::kBadVisibility);
   f = sample_frame(Encoding::kHalf, false);
-  f.relocated = {7, 21};  // 21 is deactivated, not updated
+  f.relocated = {7, 22};  // 22 is neither updated nor deactivated
   const DecodeResult r = decode_frame(encode_frame(f));
   EXPECT_EQ(r.reject, RejectKind::kBadVisibility);
-  EXPECT_EQ(r.detail, "probe 21 has an offset but is not updated");
+  EXPECT_EQ(r.detail, "probe 22 has an offset but is neither updated nor deactivated");
+  f.relocated = {7, 21};  // a deactivated probe's offset: the shader weighs inactive probes too
+  EXPECT_TRUE(decode_frame(encode_frame(f)).ok);
 }
 
 TEST(FrameReject, Decompression) {
