@@ -87,7 +87,8 @@ std::optional<FrameHeader> ask_stream_header(const ClientOptions& options, int w
       s.send(zmq::str_buffer("INFO"), zmq::send_flags::dontwait);  // queued until connected
     }
     const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms);
-    while (true) {
+    std::size_t answers = 0;  // refused ones: once every server has answered, waiting is no use
+    while (answers < sockets.size()) {
       std::vector<zmq::pollitem_t> items;
       for (zmq::socket_t& s : sockets) items.push_back({s.handle(), 0, ZMQ_POLLIN, 0});
       const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now());
@@ -96,6 +97,7 @@ std::optional<FrameHeader> ask_stream_header(const ClientOptions& options, int w
       for (zmq::socket_t& s : sockets) {
         std::vector<zmq::message_t> parts;
         if (!zmq::recv_multipart(s, std::back_inserter(parts), zmq::recv_flags::dontwait)) continue;
+        ++answers;
         if (parts.size() != 2 || parts[0].to_string() != "INFO") {
           why = "an INFO reply of the wrong shape";
           continue;
