@@ -136,24 +136,22 @@ std::uint16_t moment_half(float v, bool& exact) {
 
 bool encode_moments(std::span<const glm::vec2> moments, std::span<std::uint8_t> out) {
   bool exact = true;
-  const std::size_t n = moments.size();
-  for (std::size_t t = 0; t < n; ++t) {
-    store16(out, t, moment_half(moments[t].x, exact));
-    store16(out, n + t, moment_half(moments[t].y, exact));
+  for (std::size_t t = 0; t < moments.size(); ++t) {
+    store16(out, 2 * t, moment_half(moments[t].x, exact));
+    store16(out, 2 * t + 1, moment_half(moments[t].y, exact));
   }
   return exact;
 }
 
 bool decode_moments(std::span<const std::uint8_t> in, std::span<glm::vec2> moments, std::size_t* bad) {
-  const std::size_t n = moments.size();
-  for (std::size_t t = 0; t < 2 * n; ++t) {
+  for (std::size_t w = 0; w < 2 * moments.size(); ++w) {
     // 0x0000 .. 0x3c00 are the halves in [0, 1]: no sign bit, nothing above one.
-    const std::uint16_t h = load16(in, t);
+    const std::uint16_t h = load16(in, w);
     if (h > 0x3c00u) {
-      if (bad) *bad = t % n;
+      if (bad) *bad = w / 2;
       return false;
     }
-    moments[t % n][int(t / n)] = sh::half_to_float(h);
+    moments[w / 2][int(w % 2)] = sh::half_to_float(h);
   }
   return true;
 }

@@ -31,9 +31,9 @@
 //   subset of the two), each an increasing list sent as LEB128 varints of the gaps
 //   (first index, then index - previous - 1); one flag byte per deactivated probe (bit 0 set,
 //   bit 1 inside geometry, nothing else); per updated probe, in index order, its record
-//   (record_bytes): the coefficients, probe_bytes(encoding, order), then its moment map,
-//   R^2 fp16 mean distances and then R^2 fp16 mean squared distances, each / range (or range^2),
-//   in [0, 1]; then per relocated probe its offset from its grid position, 3 f32 metres.
+//   (record_bytes): the coefficients, probe_bytes(encoding, order), then its moment map, per
+//   texel an fp16 mean distance and an fp16 mean squared distance, / range (or range^2), in
+//   [0, 1]; then per relocated probe its offset from its grid position, 3 f32 metres.
 //   An updated or deactivated probe that is not relocated has a zero offset (an inactive
 //   probe's offset matters too: the shader weighs all 8 probes of a cell before it folds the
 //   weights). Nothing after.
