@@ -338,10 +338,11 @@ Action make_serve(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--seconds", a->seconds, "stop after this many seconds (0: run until interrupted)")
       ->capture_default_str();
-  cmd->add_option("--encoding", a->encoding, "probe encoding: fp16, shared-exponent or compact")->capture_default_str();
+  cmd->add_option("--encoding", a->encoding, "coefficient encoding: fp16, shared-exponent or compact (distance moments travel as fp16 whatever it is)")->capture_default_str();
   cmd->add_flag("--zstd", a->zstd, "compress every frame's payload with zstd");
   cmd->add_option("--delta-threshold", a->threshold,
-                  "re-send a probe when a coefficient moved more than this fraction of its largest L0")
+                  "re-send a probe when a coefficient moved more than this fraction of its largest L0, or a "
+                  "distance moment more than this fraction of the moment range")
       ->capture_default_str();
   cmd->add_option("--delta-floor", a->floor, "... or more than this absolute amount, whichever is larger")
       ->capture_default_str();

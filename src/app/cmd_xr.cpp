@@ -250,7 +250,7 @@ Action make_xr(CLI::App& root) {
                   "probes from a ddish serve at tcp://HOST:PORT (as ddish view) instead of in-process");
   cmd->add_option("--probes", a->stream.baked, "with --connect: baked probes (ddish probes --out) until the server answers")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--wait-ms", a->stream.wait_ms, "with --connect: the first frame's wait for the server's snapshot")
+  cmd->add_option("--wait-ms", a->stream.wait_ms, "with --connect: the wait for the servers' stream description (its moment maps), then the first frame's for their snapshot")
       ->capture_default_str();
   cmd->add_option("--frame-wait-ms", a->stream.frame_wait_ms, "with --connect: each later frame's wait for the server")
       ->capture_default_str();
