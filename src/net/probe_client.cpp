@@ -267,14 +267,16 @@ struct ProbeClient::Impl {
                               h.counts[0] == std::uint32_t(volume.grid().counts().x) &&
                               h.counts[1] == std::uint32_t(volume.grid().counts().y) &&
                               h.counts[2] == std::uint32_t(volume.grid().counts().z);
+      const auto maps = [](int resolution, float range) {
+        return resolution > 0 ? fmt::format("{0}x{0} distance-moment maps over {1:g} m", resolution, range)
+                              : std::string("no distance moments");
+      };
       if (same_scene)
         count_reject(RejectKind::kSceneMismatch,
-                     fmt::format("its probes carry {}x{} distance-moment maps over {:g} m, this client's "
-                                 "volume {}x{} over {:g} m (a client sizes its maps by the server that "
-                                 "answers as it starts: restart it while the server is up)",
-                                 h.moment_resolution, h.moment_resolution, h.moment_range,
-                                 volume.moment_resolution(), volume.moment_resolution(),
-                                 volume.has_moments() ? volume.moment_range() : 0.0f),
+                     fmt::format("its probes carry {}, this client's volume {} (a client sizes its maps by "
+                                 "the server that answers as it starts: restart it while the server is up)",
+                                 maps(h.moment_resolution, h.moment_range),
+                                 maps(volume.moment_resolution(), volume.moment_range())),
                      from);
       else
         count_reject(RejectKind::kSceneMismatch,

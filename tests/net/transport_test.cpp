@@ -212,6 +212,24 @@ TEST(Transport, AVersionOnePeerGetsOneClearLine) {
                               "build speaks 2); run the same ddish release on both sides");
 }
 
+// A client whose volume was sized for other moment maps (it started before its server, which
+// streams none) refuses the stream with a line that says so, and applies nothing.
+TEST(Transport, ServerOfOtherMomentMapsIsRefusedWithOneLine) {
+  Server s(address(2), kScene, 1);
+  probes::ProbeVolume mine(grid(), 2, 8);
+  log_lines.clear();
+  ProbeClient client(client_options(address(2)), mine, kScene);
+  for (int turn = 0; turn < 40 && client.rejected(RejectKind::kSceneMismatch) == 0; ++turn) {
+    s.tick(5);
+    client.poll(5);
+  }
+  EXPECT_FALSE(client.ever_synced());
+  EXPECT_GT(client.rejected(RejectKind::kSceneMismatch), 0u);
+  ASSERT_EQ(log_lines.size(), 1u);
+  EXPECT_NE(log_lines[0].find("its probes carry no distance moments, this client's volume 8x8 distance-moment maps"),
+            std::string::npos) << log_lines[0];
+}
+
 TEST(Transport, ServerOfAnotherSceneIsRefused) {
   Server s(address(2), kScene + 1, 1);
   probes::ProbeVolume mine(grid(), 2);
