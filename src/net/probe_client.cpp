@@ -102,7 +102,9 @@ std::optional<FrameHeader> ask_stream_header(const ClientOptions& options, int w
           why = "an INFO reply of the wrong shape";
           continue;
         }
-        const DecodeResult r = decode_frame(bytes_of(parts[1]));
+        DecodeLimits empty;  // the description holds no probes: nothing to inflate
+        empty.max_payload_bytes = 0;
+        const DecodeResult r = decode_frame(bytes_of(parts[1]), empty);
         if (r.ok && r.frame.header.kind == FrameKind::kKeyframe && r.frame.updated.empty())
           return r.frame.header;
         why = r.ok ? "an INFO reply that is not an empty keyframe" : reject_name(r.reject) + ": " + r.detail;
