@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     probes::ProbeVolume volume(grid, 2);
     std::vector<net::PublishedProbes> streams;
     for (std::uint32_t b = 0; b < layout.brick_count(); ++b)
-      streams.emplace_back(grid, 2, 7, 1, net::StreamOptions{.encoding = net::Encoding::kCompact}, layout.probes(b));
+      streams.emplace_back(volume, 7, 1, net::StreamOptions{.encoding = net::Encoding::kCompact}, layout.probes(b));
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<float> u(0.2f, 1.0f);
     for (std::uint32_t i = 0; i < volume.probe_count(); ++i) {

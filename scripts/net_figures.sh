@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Figures of the probe stream (docs/protocol.md), from the built binaries on loopback:
-#   1. bytes per L2 probe per encoding (the first update of an 8x8x8 grid, every probe sent) and
-#      the PSNR of a view's image against the in-process render of the same probes;
+#   1. bytes per L2 probe per encoding (the first update of an 8x8x8 grid, every probe sent, with
+#      its 8x8 distance-moment map, 256 bytes of it, and without: --probe-visibility 0) and the
+#      PSNR of a view's image against the in-process render of the same probes (visibility as
+#      the server's);
 #   2. bytes per second, static (cornell_box) against animated (cornell_animated), change-driven
 #      stream at the default threshold, uniform schedule (every probe traced every tick), 30 ticks/s;
 #   3. probe age at a client (server trace end -> upload, ms): median and 95th percentile;
@@ -9,7 +11,7 @@
 #      clients (64x64 views each, visibility schedule), median over the ticks after the first 30;
 #   5. reconnection times from the 4-client x 10-restart fault test (tests/app), per client;
 #   6. what a relay forwards (bench/net_relay: bricks at 30 ticks/s to 1 and 4 clients).
-# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24039 and 24100-24107; ~3 minutes.
+# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24039 and 24100-24107; ~4 minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build}
@@ -20,25 +22,29 @@ IMAGE="--width 256 --height 256"
 S=scenes/cornell_box.gltf
 wait_for() { for _ in $(seq 1 600); do grep -q "$2" "$1" 2>/dev/null && return 0; sleep 0.1; done; echo "timeout: $2 in $1" >&2; return 1; }
 
-"$B/ddish" render $S $PROBES $IMAGE --frames 5 --warmup-ms 0 --out "$D/render" >/dev/null 2>&1
-echo "encoding,zstd,bytes_first_update,probes_sent,bytes_per_probe,psnr_vs_in_process_db"
+for vis in 8 0; do
+  "$B/ddish" render $S $PROBES $IMAGE --probe-visibility $vis --frames 5 --warmup-ms 0 --out "$D/render$vis" >/dev/null 2>&1
+done
+echo "encoding,zstd,moment_maps,bytes_first_update,probes_sent,bytes_per_probe,psnr_vs_in_process_db"
 port=24000
-for enc in fp16 shared-exponent compact; do
+for run in fp16:8 shared-exponent:8 compact:8 fp16:0 compact:0; do
+  enc=${run%:*} vis=${run#*:}
   for z in "" "--zstd"; do
-    "$B/ddish" serve $S $PROBES --bind tcp://127.0.0.1:$port --frames 5 --seconds 30 --encoding $enc $z \
-      --delta-threshold 0 --timings "$D/serve.json" >"$D/serve.log" 2>&1 &
+    "$B/ddish" serve $S $PROBES --probe-visibility $vis --bind tcp://127.0.0.1:$port --frames 5 --seconds 30 \
+      --encoding $enc $z --delta-threshold 0 --timings "$D/serve.json" >"$D/serve.log" 2>&1 &
     pid=$!
     wait_for "$D/serve.log" "update 5:"
     "$B/ddish" view $S --grid 8,8,8 $IMAGE --connect tcp://127.0.0.1:$port --out "$D/view" >/dev/null 2>&1
     kill -TERM $pid; wait $pid || true
-    psnr=$("$B/ddish" compare "$D/view/frame_0000.exr" "$D/render/frame_0004.exr" | awk '/psnr/ {print $2}')
-    python3 - "$D/serve.json" "$enc" "${z:+yes}" "$psnr" <<'PY'
+    psnr=$("$B/ddish" compare "$D/view/frame_0000.exr" "$D/render$vis/frame_0004.exr" | awk '/psnr/ {print $2}')
+    python3 - "$D/serve.json" "$enc" "${z:+yes}" "$psnr" "$vis" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
 t = d["ticks"]
 first = next(x for x in t if x["probes_sent"] > 0)
-headers = 88 * d["summary"]["bricks"]  # one frame per brick (4x4x4 probes) per tick
-print(f'{sys.argv[2]},{sys.argv[3] or "no"},{first["bytes"]},{first["probes_sent"]},{(first["bytes"] - headers) / first["probes_sent"]:.2f},{sys.argv[4]}')
+headers = 96 * d["summary"]["bricks"]  # one frame per brick (4x4x4 probes) per tick
+maps = f'{sys.argv[5]}x{sys.argv[5]}' if sys.argv[5] != "0" else "none"
+print(f'{sys.argv[2]},{sys.argv[3] or "no"},{maps},{first["bytes"]},{first["probes_sent"]},{(first["bytes"] - headers) / first["probes_sent"]:.2f},{sys.argv[4]}')
 PY
     port=$((port + 2))
   done

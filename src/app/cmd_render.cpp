@@ -215,7 +215,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     std::fprintf(stderr, "%s: probe tracer %s\n", a.tag(), tracer->why.c_str());
   }
   const bool gpu_tracer = tracer && tracer->kind == TracerKind::vulkan;
-  probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.baked, placement)
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream_args(a), placement, a.tag())
                                       : local_volume(a.probe, placement.grid);
   const std::uint32_t empty_probes = remote ? 0 : leave_out_empty_probes(volume, s);
 
@@ -552,7 +552,9 @@ Action make_view(CLI::App& root) {
   cmd->add_option("--probes", a->baked,
                   "baked probes (ddish probes --out) to render with until the server answers")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--wait-ms", a->wait_ms, "how long the first frame waits for the server's snapshot")
+  cmd->add_option("--wait-ms", a->wait_ms,
+                  "how long the client waits for the servers' stream description (its moment maps), then the "
+                  "first frame for their snapshot")
       ->capture_default_str();
   cmd->add_option("--frame-wait-ms", a->frame_wait_ms,
                   "each later frame waits up to this long for the server's next frame (0: takes what arrived)")

@@ -2,7 +2,8 @@
 //                   [--seconds S] [--time T] [--encoding fp16|shared-exponent|compact] [--zstd]
 //                   [--delta-threshold R] [--delta-floor A] [--client-timeout-ms MS]
 //                   [--client-budget-ms MS] [--bricks I/N] [--curve-secret FILE --allow-keys DIR]
-//                   [--timings FILE.json] [probe options] [schedule options]
+//                   [--timings FILE.json] [probe options] [--probe-visibility R]
+//                   [--probe-relocation] [schedule options]
 //
 // The probe server: the frame loop's in-process probe source (probe_source.h) with the probe
 // stream's publisher (net/) as its only consumer, and no rasterizer. Each tick (--fps) it poses
@@ -10,7 +11,8 @@
 // like a display's) within --budget-ms (or --client-budget-ms per connected client, so that each
 // client's views converge as fast as if it were alone: tests/probes/test_scheduler_clients.cpp),
 // runs the one probe update, and publishes the delta of
-// what changed (net/published_probes.h: --delta-threshold); between ticks it answers snapshot
+// what changed (net/published_probes.h: --delta-threshold), each sent probe with its distance
+// moments (--probe-visibility, default 8 as render's) and relocation offset; between ticks it answers snapshot
 // requests and takes the clients' views. A client silent for --client-timeout-ms stops counting.
 // With no client it idles (publishes empty deltas as heartbeats, traces nothing); --frames N
 // instead makes N updates whatever the clients, then serves their result. --seconds S stops it
@@ -178,7 +180,9 @@ int run_serve(const ServeArgs& a) {
   ProbeEngine engine(tracer.kind, s, path_options, update_options(a.probe), std::nullopt);
   const double budget_ms = frame_budget_ms(a.schedule, std::nullopt);
   probes::Scheduler scheduler(scheduler_options(a.schedule, a.probe, budget_ms));
-  probes::ProbeVolume volume(placement.grid, a.probe.sh_order);
+  // With distance moments (--probe-visibility, CPU tracer) and relocation offsets, which every
+  // frame carries: a client interpolates with the visibility an in-process render has.
+  probes::ProbeVolume volume = local_volume(a.probe, placement.grid, tracer.kind == TracerKind::vulkan);
   if (const std::uint32_t n = leave_out_empty_probes(volume, s); n > 0) {
     const scene::PlanItem item = empty_probes_item(n, volume.grid());
     std::fprintf(stderr, "serve: left out %s: %s\n", item.what.c_str(), item.why.c_str());
@@ -212,7 +216,7 @@ int run_serve(const ServeArgs& a) {
     }
     stream_of[b] = int(owned.size());
     owned.push_back(b);
-    published.emplace_back(placement.grid, a.probe.sh_order, identity, stream, so, std::move(probes));
+    published.emplace_back(volume, identity, stream, so, std::move(probes));
   }
   std::optional<net::CurveServerKeys> curve;
   if (!a.curve_secret.empty())
@@ -222,7 +226,8 @@ int run_serve(const ServeArgs& a) {
                            .client_timeout_ms = a.client_timeout_ms,
                            .log = [](const std::string& line) { std::fprintf(stderr, "serve: %s\n", line.c_str()); },
                            .curve = curve,
-                           .send_hwm = int(std::max<std::size_t>(64, 8 * owned.size()))});
+                           .send_hwm = int(std::max<std::size_t>(64, 8 * owned.size())),
+                           .info = net::PublishedProbes(volume, identity, stream, so).description()});
   if (curve)
     std::fprintf(stderr, "serve: CurveZMQ, %zu client keys allowed (%s)\n", curve->allowed_z85.size(),
                  a.allow_keys.c_str());
@@ -230,10 +235,13 @@ int run_serve(const ServeArgs& a) {
   const auto& g = placement.grid;
   std::fprintf(stderr,
                "serve: %s on %s (requests %s), scene identity %016llx, stream %016llx; probes %dx%dx%d "
-               "(%s), L%d, %s%s, delta threshold %g (floor %g); bricks %s: %zu of %u; %s\n",
+               "(%s), L%d, visibility %s, %s%s, delta threshold %g (floor %g); bricks %s: %zu of %u; %s\n",
                s.path.c_str(), endpoint.publisher().c_str(), endpoint.requests().c_str(),
                static_cast<unsigned long long>(identity), static_cast<unsigned long long>(stream),
                g.counts().x, g.counts().y, g.counts().z, placement.how.c_str(), a.probe.sh_order,
+               volume.has_moments() ? fmt::format("{0}x{0} moments over {1:g} m", volume.moment_resolution(),
+                                                  volume.moment_range()).c_str()
+                                    : "off",
                a.encoding.c_str(), a.zstd ? " + zstd" : "", a.threshold, a.floor, a.bricks.c_str(),
                owned.size(), layout.brick_count(),
                a.frames > 0 ? fmt::format("{} updates, then serving them", a.frames).c_str()
@@ -320,6 +328,7 @@ Action make_serve(CLI::App& root) {
   cmd->add_option("--bind", a->bind, "publisher address tcp://HOST:PORT (PORT+1: requests)")->capture_default_str();
   cmd->add_flag("--insecure", a->insecure, "allow a non-loopback --bind without keys");
   add_probe_options(*cmd, a->probe);
+  add_visibility_options(*cmd, a->probe);
   add_schedule_options(*cmd, a->schedule);
   cmd->add_option("--fps", a->fps, "ticks per second (one probe update and one published delta each)")
       ->capture_default_str();
@@ -329,10 +338,11 @@ Action make_serve(CLI::App& root) {
       ->capture_default_str();
   cmd->add_option("--seconds", a->seconds, "stop after this many seconds (0: run until interrupted)")
       ->capture_default_str();
-  cmd->add_option("--encoding", a->encoding, "probe encoding: fp16, shared-exponent or compact")->capture_default_str();
+  cmd->add_option("--encoding", a->encoding, "coefficient encoding: fp16, shared-exponent or compact (distance moments travel as fp16 whatever it is)")->capture_default_str();
   cmd->add_flag("--zstd", a->zstd, "compress every frame's payload with zstd");
   cmd->add_option("--delta-threshold", a->threshold,
-                  "re-send a probe when a coefficient moved more than this fraction of its largest L0")
+                  "re-send a probe when a coefficient moved more than this fraction of its largest L0, or a "
+                  "distance moment more than this fraction of the moment range")
       ->capture_default_str();
   cmd->add_option("--delta-floor", a->floor, "... or more than this absolute amount, whichever is larger")
       ->capture_default_str();

@@ -121,7 +121,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
                xri.system_name().c_str(), eyes[0].width, eyes[0].height,
                xri.validation_enabled() ? ", OpenXR core validation on" : "");
 
-  probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream.baked, placement)
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream, placement, "xr")
                                       : local_volume(a.probe, placement.grid);
   if (!remote) {
     const std::uint32_t n = leave_out_empty_probes(volume, s);
@@ -269,7 +269,7 @@ Action make_xr(CLI::App& root) {
                   "probes from a ddish serve at tcp://HOST:PORT (as ddish view) instead of in-process");
   cmd->add_option("--probes", a->stream.baked, "with --connect: baked probes (ddish probes --out) until the server answers")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--wait-ms", a->stream.wait_ms, "with --connect: the first frame's wait for the server's snapshot")
+  cmd->add_option("--wait-ms", a->stream.wait_ms, "with --connect: the wait for the servers' stream description (its moment maps), then the first frame's for their snapshot")
       ->capture_default_str();
   cmd->add_option("--frame-wait-ms", a->stream.frame_wait_ms, "with --connect: each later frame's wait for the server")
       ->capture_default_str();

@@ -1,12 +1,15 @@
 #include "app/probe_setup.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "app/remote_probes.h"
 #include "net/curve_keys.h"
+#include "net/probe_client.h"
 #include "probes/surface_cells.h"
 #include "probes/volume_file.h"
 
@@ -37,16 +40,59 @@ scene::PlanItem empty_probes_item(std::uint32_t left_out, const probes::ProbeGri
           "no surface within half a cell of the cells they light: never traced, uploaded or sent"};
 }
 
-probes::ProbeVolume starting_volume(const ProbeArgs& probe, const std::string& baked, const Placement& placement) {
-  if (baked.empty()) return probes::ProbeVolume(placement.grid, probe.sh_order);
-  const probes::VolumeFile file = probes::read_volume_file(baked);
-  probes::ProbeVolume volume = file.to_volume();
-  if (volume.grid().counts() != placement.grid.counts() || volume.sh_order() != probe.sh_order)
-    throw std::invalid_argument(fmt::format(
-        "--probes {}: grid {}x{}x{} L{}, but this scene's probes are {}x{}x{} L{} (same --grid and --sh-order as the server)",
-        baked, volume.grid().counts().x, volume.grid().counts().y, volume.grid().counts().z,
-        volume.sh_order(), placement.grid.counts().x, placement.grid.counts().y,
-        placement.grid.counts().z, probe.sh_order));
+namespace {
+
+net::ClientOptions client_options(const StreamArgs& stream, const char* tag) {
+  net::ClientOptions co;
+  co.connect = stream.connect;
+  co.stale_ms = stream.stale_ms;
+  co.relay = stream.relay;
+  const std::string prefix = tag;
+  co.log = [prefix](const std::string& line) { std::fprintf(stderr, "%s: %s\n", prefix.c_str(), line.c_str()); };
+  if (!stream.curve_secret.empty()) {
+    const net::CurveKeyPair mine = net::read_secret_key(stream.curve_secret);
+    co.curve = net::CurveClientKeys{net::read_public_key(stream.curve_server_key), mine.public_z85, mine.secret_z85};
+  }
+  return co;
+}
+
+}  // namespace
+
+probes::ProbeVolume starting_volume(const ProbeArgs& probe, const StreamArgs& stream,
+                                    const Placement& placement, const char* tag) {
+  std::optional<probes::ProbeVolume> baked;
+  if (!stream.baked.empty()) {
+    baked = probes::read_volume_file(stream.baked).to_volume();
+    if (baked->grid().counts() != placement.grid.counts() || baked->sh_order() != probe.sh_order)
+      throw std::invalid_argument(fmt::format(
+          "--probes {}: grid {}x{}x{} L{}, but this scene's probes are {}x{}x{} L{} (same --grid and --sh-order as the server)",
+          stream.baked, baked->grid().counts().x, baked->grid().counts().y, baked->grid().counts().z,
+          baked->sh_order(), placement.grid.counts().x, placement.grid.counts().y,
+          placement.grid.counts().z, probe.sh_order));
+  }
+  int resolution = baked ? baked->moment_resolution() : probe.visibility;
+  std::string problem;
+  if (const std::optional<net::FrameHeader> h = net::ask_stream_header(client_options(stream, tag), stream.wait_ms, &problem)) {
+    resolution = h->moment_resolution;
+    std::fprintf(stderr, "%s: the server streams %s\n", tag,
+                 resolution > 0 ? fmt::format("{0}x{0} distance-moment maps per probe (visibility on)", resolution).c_str()
+                                : "no distance moments (visibility off)");
+  } else {
+    std::fprintf(stderr, "%s: no stream description from %s (%s): assuming %s until a server answers\n", tag,
+                 stream.connect.c_str(), problem.c_str(),
+                 resolution > 0 ? fmt::format("{0}x{0} distance-moment maps", resolution).c_str() : "no distance moments");
+  }
+  if (!baked) return probes::ProbeVolume(placement.grid, probe.sh_order, resolution);
+  if (baked->moment_resolution() == resolution) return std::move(*baked);
+  // The baked probes' light, without their moment maps (of another resolution than the
+  // stream's): interpolated without visibility until the server's probes arrive.
+  probes::ProbeVolume volume(placement.grid, probe.sh_order, resolution);
+  for (std::uint32_t i = 0; i < volume.probe_count(); ++i) {
+    volume.state(i) = baked->state(i);
+    std::copy(baked->coefficients(i).begin(), baked->coefficients(i).end(), volume.coefficients(i).begin());
+    volume.set_offset(i, baked->offset(i));
+  }
+  volume.set_frame(baked->frame());
   return volume;
 }
 
@@ -62,16 +108,7 @@ std::unique_ptr<ProbeSource> make_probe_source(InProcessParts* local, const Prob
         },
         volume);
   }
-  net::ClientOptions co;
-  co.connect = stream.connect;
-  co.stale_ms = stream.stale_ms;
-  co.relay = stream.relay;
-  const std::string prefix = tag;
-  co.log = [prefix](const std::string& line) { std::fprintf(stderr, "%s: %s\n", prefix.c_str(), line.c_str()); };
-  if (!stream.curve_secret.empty()) {
-    const net::CurveKeyPair mine = net::read_secret_key(stream.curve_secret);
-    co.curve = net::CurveClientKeys{net::read_public_key(stream.curve_server_key), mine.public_z85, mine.secret_z85};
-  }
+  const net::ClientOptions co = client_options(stream, tag);
   auto remote = std::make_unique<RemoteProbes>(co, volume, identity, stream.wait_ms, stream.frame_wait_ms);
   std::fprintf(stderr, "%s: probes from %s (scene identity %016llx)\n", tag, stream.connect.c_str(),
                static_cast<unsigned long long>(identity));

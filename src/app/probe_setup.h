@@ -59,9 +59,13 @@ std::uint32_t leave_out_empty_probes(probes::ProbeVolume& volume, scene::Scene& 
 scene::PlanItem empty_probes_item(std::uint32_t left_out, const probes::ProbeGrid& grid);
 
 // The stream client's starting probes: the --probes volume (same grid and order as the scene's
-// placement, or an error), else none (direct light only until a server answers).
-probes::ProbeVolume starting_volume(const ProbeArgs& probe, const std::string& baked,
-                                    const Placement& placement);
+// placement, or an error), else none (direct light only until a server answers). Its moment
+// maps are the server's: the servers are asked for their stream's description (up to
+// stream.wait_ms) before the volume is made, so that the renderer sizes its visibility data
+// for what the stream carries; without an answer, the baked volume's, else --probe-visibility's
+// (8 by default, serve's default), and a server of other maps is refused with a line that says so.
+probes::ProbeVolume starting_volume(const ProbeArgs& probe, const StreamArgs& stream,
+                                    const Placement& placement, const char* tag);
 
 // The frame loop's probe source: in-process over `local`, else the stream's client (`tag` names
 // the command in its log lines). Everything is borrowed.

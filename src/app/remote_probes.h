@@ -1,5 +1,7 @@
 // The remote probe source of the frame loop (`ddish view`): the probe stream's client
-// (net/probe_client.h). Each frame it sends the frame's views upstream, takes what the server
+// (net/probe_client.h). Its volume comes from starting_volume (probe_setup.h), sized for the
+// server's distance-moment maps; each applied frame sets the probes' coefficients, moments,
+// relocation offsets and states, and the probes it changed go to the upload. Each frame it sends the frame's views upstream, takes what the server
 // published since the last frame, and hands the probes that changed to the upload. Frame 0
 // waits up to `first_wait_ms` for the server's snapshot (every server's, for the bricks the views
 // need); without one the volume keeps what it

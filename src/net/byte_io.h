@@ -20,6 +20,11 @@ class ByteWriter {
   void u32(std::uint32_t v) { uint_le(v, 4); }
   void u64(std::uint64_t v) { uint_le(v, 8); }
   void i64(std::int64_t v) { uint_le(static_cast<std::uint64_t>(v), 8); }
+  void f32(float v) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &v, 4);
+    u32(bits);
+  }
   void f64(double v) {
     std::uint64_t bits;
     std::memcpy(&bits, &v, 8);
@@ -57,6 +62,12 @@ class ByteReader {
     std::uint64_t u;
     if (!uint_le(u, 8)) return false;
     v = static_cast<std::int64_t>(u);
+    return true;
+  }
+  bool f32(float& v) {
+    std::uint32_t bits;
+    if (!uint_le(bits, 4)) return false;
+    std::memcpy(&v, &bits, 4);
     return true;
   }
   bool f64(double& v) {

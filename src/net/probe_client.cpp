@@ -75,6 +75,49 @@ std::vector<std::string> dropped_endpoints(zmq::socket_t& events) {
 
 }  // namespace
 
+std::optional<FrameHeader> ask_stream_header(const ClientOptions& options, int wait_ms, std::string* problem) {
+  zmq::context_t context(1);
+  std::vector<zmq::socket_t> sockets;
+  std::string why = fmt::format("no answer within {} ms", wait_ms);
+  try {
+    for (const Endpoint& e : parse_endpoint_list(options.connect)) {
+      zmq::socket_t& s = sockets.emplace_back(context, zmq::socket_type::dealer);
+      set_common(s, options, true);
+      s.connect(e.requests());
+      s.send(zmq::str_buffer("INFO"), zmq::send_flags::dontwait);  // queued until connected
+    }
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(wait_ms);
+    std::size_t answers = 0;  // refused ones: once every server has answered, waiting is no use
+    while (answers < sockets.size()) {
+      std::vector<zmq::pollitem_t> items;
+      for (zmq::socket_t& s : sockets) items.push_back({s.handle(), 0, ZMQ_POLLIN, 0});
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(end - std::chrono::steady_clock::now());
+      if (left.count() <= 0) break;
+      zmq::poll(items.data(), items.size(), left);
+      for (zmq::socket_t& s : sockets) {
+        std::vector<zmq::message_t> parts;
+        if (!zmq::recv_multipart(s, std::back_inserter(parts), zmq::recv_flags::dontwait)) continue;
+        ++answers;
+        if (parts.size() != 2 || parts[0].to_string() != "INFO") {
+          why = "an INFO reply of the wrong shape";
+          continue;
+        }
+        DecodeLimits empty;  // the description holds no probes: nothing to inflate
+        empty.max_payload_bytes = 0;
+        const DecodeResult r = decode_frame(bytes_of(parts[1]), empty);
+        if (r.ok && r.frame.header.kind == FrameKind::kKeyframe && r.frame.updated.empty())
+          return r.frame.header;
+        why = r.ok ? "an INFO reply that is not an empty keyframe" : reject_name(r.reject) + ": " + r.detail;
+      }
+    }
+  } catch (const zmq::error_t& e) {
+    if (e.num() != EINTR) throw;
+    why = "interrupted";
+  }
+  if (problem) *problem = why;
+  return std::nullopt;
+}
+
 struct ProbeClient::Impl {
   // One server: its request socket and its clocks.
   struct Server {
@@ -118,7 +161,11 @@ struct ProbeClient::Impl {
     // camera's step before its next subscription takes effect.
     margin = 0.25f * std::max({spacing.x, spacing.y, spacing.z});
     // A frame cannot hold more than a brick's probes: anything larger is a lie.
-    limits.max_payload_bytes = std::size_t(kBrickEdge * kBrickEdge * kBrickEdge) * (5 + 1 + 152) + 64;
+    // (per probe: 3 index varints, a flag byte, the largest record and an offset).
+    limits.max_payload_bytes =
+        std::size_t(kBrickEdge * kBrickEdge * kBrickEdge) *
+            (3 * 5 + 1 + 152 + moment_bytes(kMaxWireMomentResolution * kMaxWireMomentResolution) + 12) +
+        64;
     const std::vector<Endpoint> endpoints = parse_endpoint_list(o.connect);
     std::optional<Endpoint> relay;
     if (!o.relay.empty()) relay = parse_endpoint(o.relay);
@@ -180,11 +227,15 @@ struct ProbeClient::Impl {
   }
   void count_reject(RejectKind kind, const std::string& detail, const std::string& from) {
     ++rejects[std::size_t(kind)];
-    if (logged.insert(int(kind)).second)
-      log(kind == RejectKind::kSceneMismatch
-              ? "refusing the probe server at " + from + ": " + detail
-              : "dropped a malformed probe message (" + reject_name(kind) + "): " + detail +
-                    "; further ones are counted");
+    if (!logged.insert(int(kind)).second) return;
+    if (kind == RejectKind::kSceneMismatch)
+      log("refusing the probe server at " + from + ": " + detail);
+    else if (kind == RejectKind::kBadVersion)
+      log("refusing the probe server at " + from + ": it speaks another version of the probe stream (" +
+          detail + "); run the same ddish release on both sides");
+    else
+      log("dropped a malformed probe message (" + reject_name(kind) + "): " + detail +
+          "; further ones are counted");
   }
 
   void request_snapshots(std::int64_t now) {
@@ -214,13 +265,29 @@ struct ProbeClient::Impl {
     ProbeMirror& mirror = *mirrors[brick];
     if (!mirror.matches(r.frame.header)) {
       const FrameHeader& h = r.frame.header;
-      count_reject(RejectKind::kSceneMismatch,
-                   fmt::format("it streams another scene or grid (identity {:016x}, grid {}x{}x{}, L{}; "
-                               "this scene is {:016x}, grid {}x{}x{}, L{})",
-                               h.scene_id, h.counts[0], h.counts[1], h.counts[2], h.sh_order, scene_id,
-                               volume.grid().counts().x, volume.grid().counts().y,
-                               volume.grid().counts().z, volume.sh_order()),
-                   from);
+      const bool same_scene = h.scene_id == scene_id && h.sh_order == volume.sh_order() &&
+                              h.counts[0] == std::uint32_t(volume.grid().counts().x) &&
+                              h.counts[1] == std::uint32_t(volume.grid().counts().y) &&
+                              h.counts[2] == std::uint32_t(volume.grid().counts().z);
+      const auto maps = [](int resolution, float range) {
+        return resolution > 0 ? fmt::format("{0}x{0} distance-moment maps over {1:g} m", resolution, range)
+                              : std::string("no distance moments");
+      };
+      if (same_scene)
+        count_reject(RejectKind::kSceneMismatch,
+                     fmt::format("its probes carry {}, this client's volume {} (a client sizes its maps by "
+                                 "the server that answers as it starts: restart it while the server is up)",
+                                 maps(h.moment_resolution, h.moment_range),
+                                 maps(volume.moment_resolution(), volume.moment_range())),
+                     from);
+      else
+        count_reject(RejectKind::kSceneMismatch,
+                     fmt::format("it streams another scene or grid (identity {:016x}, grid {}x{}x{}, L{}; "
+                                 "this scene is {:016x}, grid {}x{}x{}, L{})",
+                                 h.scene_id, h.counts[0], h.counts[1], h.counts[2], h.sh_order, scene_id,
+                                 volume.grid().counts().x, volume.grid().counts().y,
+                                 volume.grid().counts().z, volume.sh_order()),
+                     from);
       return false;
     }
     const bool keyframe = r.frame.header.kind == FrameKind::kKeyframe;
@@ -232,6 +299,11 @@ struct ProbeClient::Impl {
     const ApplyOutcome outcome = mirror.apply(r.frame, changed);
     if (outcome == ApplyOutcome::kOutside) {
       count_reject(RejectKind::kBadIndex, fmt::format("probes outside brick {} under its topic", brick), from);
+      return false;
+    }
+    if (outcome == ApplyOutcome::kBadOffset) {
+      count_reject(RejectKind::kBadVisibility,
+                   fmt::format("a relocation offset beyond {:g} of a cell", probes::kMaxRelocation), from);
       return false;
     }
     if (outcome == ApplyOutcome::kGap) mirror.desync();  // lost a delta or a new server: re-snapshot

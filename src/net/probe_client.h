@@ -62,6 +62,14 @@ struct ClientPoll {
   std::uint64_t bytes = 0;             // of every message received
 };
 
+// Asks every server of options.connect for its stream's description (the INFO request,
+// probe_server.h) and returns the header of the first valid answer within wait_ms: what a
+// client sizes its volume by (moment resolution and range) before it takes any frame. nullopt
+// when none answers in time; *problem then says why (no answer, or the answer refused: another
+// protocol version, say).
+std::optional<FrameHeader> ask_stream_header(const ClientOptions& options, int wait_ms,
+                                             std::string* problem = nullptr);
+
 class ProbeClient {
  public:
   // `volume` (borrowed) is the client's volume of its own scene, `scene_id` its identity.

@@ -1,5 +1,6 @@
 #include "net/probe_encoding.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "net/compact_sh.h"
@@ -121,6 +122,38 @@ bool decode_probe(Encoding encoding, int order, std::span<const std::uint8_t> in
     case Encoding::kCompact: return decode_compact(in, order, coefficients);
   }
   return false;
+}
+
+namespace {
+std::uint16_t moment_half(float v, bool& exact) {
+  if (!(v >= 0.0f && v <= 1.0f)) {
+    exact = false;
+    v = std::isnan(v) ? 1.0f : std::clamp(v, 0.0f, 1.0f);
+  }
+  return sh::float_to_half(v);
+}
+}  // namespace
+
+bool encode_moments(std::span<const glm::vec2> moments, std::span<std::uint8_t> out) {
+  bool exact = true;
+  for (std::size_t t = 0; t < moments.size(); ++t) {
+    store16(out, 2 * t, moment_half(moments[t].x, exact));
+    store16(out, 2 * t + 1, moment_half(moments[t].y, exact));
+  }
+  return exact;
+}
+
+bool decode_moments(std::span<const std::uint8_t> in, std::span<glm::vec2> moments, std::size_t* bad) {
+  for (std::size_t w = 0; w < 2 * moments.size(); ++w) {
+    // 0x0000 .. 0x3c00 are the halves in [0, 1]: no sign bit, nothing above one.
+    const std::uint16_t h = load16(in, w);
+    if (h > 0x3c00u) {
+      if (bad) *bad = w / 2;
+      return false;
+    }
+    moments[w / 2][int(w % 2)] = sh::half_to_float(h);
+  }
+  return true;
 }
 
 }  // namespace ddish::net

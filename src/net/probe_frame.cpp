@@ -1,11 +1,13 @@
 #include "net/probe_frame.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <glm/glm.hpp>
 #include <zstd.h>
 
 #include "net/byte_io.h"
@@ -66,25 +68,32 @@ std::string reject_name(RejectKind kind) {
     case RejectKind::kBadCoefficients: return "bad-coefficients";
     case RejectKind::kDecompression: return "decompression";
     case RejectKind::kSceneMismatch: return "scene-mismatch";
+    case RejectKind::kBadVisibility: return "bad-visibility";
   }
   return "unknown";
 }
 
-std::vector<std::uint8_t> encode_frame(const FrameHeader& h, std::span<const std::uint32_t> updated,
-                                       std::span<const std::uint8_t> probe_bytes,
-                                       std::span<const std::uint32_t> deactivated,
-                                       std::span<const std::uint8_t> deactivated_flags,
-                                       int zstd_level) {
-  const std::size_t per_probe = std::size_t(net::probe_bytes(h.encoding, h.sh_order));
-  if (probe_bytes.size() != updated.size() * per_probe || deactivated.size() != deactivated_flags.size())
+std::size_t record_bytes(const FrameHeader& h) {
+  return std::size_t(probe_bytes(h.encoding, h.sh_order)) + moment_bytes(h.moment_texels());
+}
+
+std::vector<std::uint8_t> encode_frame(const FrameHeader& h, const FrameParts& parts, int zstd_level) {
+  const std::size_t per_probe = record_bytes(h);
+  if (parts.records.size() != parts.updated.size() * per_probe ||
+      parts.deactivated.size() != parts.deactivated_flags.size() ||
+      parts.relocated.size() != parts.offsets.size() || parts.relocated.size() > parts.updated.size() + parts.deactivated.size())
     throw std::invalid_argument("encode_frame: probe data does not match the index lists");
   std::vector<std::uint8_t> payload;
-  payload.reserve(updated.size() * (per_probe + 1) + deactivated.size() * 2);
+  payload.reserve(parts.updated.size() * (per_probe + 1) + parts.deactivated.size() * 2 +
+                  parts.relocated.size() * 13);
   ByteWriter p(payload);
-  write_indices(p, updated);
-  write_indices(p, deactivated);
-  p.bytes(deactivated_flags);
-  p.bytes(probe_bytes);
+  write_indices(p, parts.updated);
+  write_indices(p, parts.deactivated);
+  write_indices(p, parts.relocated);
+  p.bytes(parts.deactivated_flags);
+  p.bytes(parts.records);
+  for (const glm::vec3& o : parts.offsets)
+    for (int a = 0; a < 3; ++a) p.f32(o[a]);
   const std::uint32_t raw_bytes = std::uint32_t(payload.size());
   if (h.zstd) {
     std::vector<std::uint8_t> packed(ZSTD_compressBound(payload.size()));
@@ -103,7 +112,8 @@ std::vector<std::uint8_t> encode_frame(const FrameHeader& h, std::span<const std
   w.u8(std::uint8_t(h.encoding));
   w.u8(std::uint8_t(h.sh_order));
   w.u8(h.zstd ? kFrameFlagZstd : 0);
-  w.u16(0);
+  w.u8(std::uint8_t(h.moment_resolution));
+  w.u8(0);
   for (std::uint32_t c : h.counts) w.u32(c);
   w.u64(h.scene_id);
   w.u64(h.stream_id);
@@ -111,8 +121,10 @@ std::vector<std::uint8_t> encode_frame(const FrameHeader& h, std::span<const std
   w.u64(h.base_frame);
   w.i64(h.server_time_us);
   w.f64(h.scene_time);
-  w.u32(std::uint32_t(updated.size()));
-  w.u32(std::uint32_t(deactivated.size()));
+  w.f32(h.moment_resolution > 0 ? h.moment_range : 0.0f);
+  w.u32(std::uint32_t(parts.updated.size()));
+  w.u32(std::uint32_t(parts.deactivated.size()));
+  w.u32(std::uint32_t(parts.relocated.size()));
   w.u32(std::uint32_t(payload.size()));
   w.u32(raw_bytes);
   w.bytes(payload);
@@ -122,23 +134,42 @@ std::vector<std::uint8_t> encode_frame(const FrameHeader& h, std::span<const std
 std::vector<std::uint8_t> encode_frame(const ProbeFrame& f, std::uint32_t* saturated,
                                        int zstd_level) {
   const int n = coefficients_of(f.header.sh_order);
-  const std::size_t per_probe = std::size_t(probe_bytes(f.header.encoding, f.header.sh_order));
-  if (f.coefficients.size() != f.updated.size() * std::size_t(n))
-    throw std::invalid_argument("encode_frame: coefficients do not match the updated probes");
+  const std::size_t texels = std::size_t(f.header.moment_texels());
+  const std::size_t sh_bytes = std::size_t(probe_bytes(f.header.encoding, f.header.sh_order));
+  const std::size_t per_probe = record_bytes(f.header);
+  if (f.coefficients.size() != f.updated.size() * std::size_t(n) ||
+      f.moments.size() != f.updated.size() * texels)
+    throw std::invalid_argument("encode_frame: coefficients or moments do not match the updated probes");
   std::vector<std::uint8_t> bytes(f.updated.size() * per_probe);
   std::uint32_t inexact = 0;
-  for (std::size_t k = 0; k < f.updated.size(); ++k)
-    if (!encode_probe(f.header.encoding, f.header.sh_order,
-                      std::span(f.coefficients).subspan(k * std::size_t(n), std::size_t(n)),
-                      std::span(bytes).subspan(k * per_probe, per_probe)))
-      ++inexact;
+  for (std::size_t k = 0; k < f.updated.size(); ++k) {
+    const std::span<std::uint8_t> record = std::span(bytes).subspan(k * per_probe, per_probe);
+    bool exact = encode_probe(f.header.encoding, f.header.sh_order,
+                              std::span(f.coefficients).subspan(k * std::size_t(n), std::size_t(n)),
+                              record.first(sh_bytes));
+    exact &= encode_moments(std::span(f.moments).subspan(k * texels, texels), record.subspan(sh_bytes));
+    if (!exact) ++inexact;
+  }
   if (saturated) *saturated = inexact;
-  return encode_frame(f.header, f.updated, bytes, f.deactivated, f.deactivated_flags, zstd_level);
+  return encode_frame(f.header,
+                      FrameParts{f.updated, bytes, f.deactivated, f.deactivated_flags, f.relocated, f.offsets},
+                      zstd_level);
 }
 
-// The header's grid, identity and clock fields, in their wire order (shared by the header-only
-// peek and the full decoder).
-static void read_identity_and_clock(ByteReader& r, FrameHeader& h) {
+// The header after its version: kind .. moment range, in their wire order (shared by the
+// header-only peek and the full decoder). The raw kind, encoding, order, flags and reserved
+// byte are returned for the decoder's checks.
+struct RawHeader {
+  std::uint8_t kind = 0, encoding = 0, order = 0, flags = 0, moments = 0, reserved = 0;
+};
+static RawHeader read_header_fields(ByteReader& r, FrameHeader& h) {
+  RawHeader raw;
+  r.u8(raw.kind);
+  r.u8(raw.encoding);
+  r.u8(raw.order);
+  r.u8(raw.flags);
+  r.u8(raw.moments);
+  r.u8(raw.reserved);
   for (std::uint32_t& c : h.counts) r.u32(c);
   r.u64(h.scene_id);
   r.u64(h.stream_id);
@@ -146,61 +177,63 @@ static void read_identity_and_clock(ByteReader& r, FrameHeader& h) {
   r.u64(h.base_frame);
   r.i64(h.server_time_us);
   r.f64(h.scene_time);
+  r.f32(h.moment_range);
+  h.kind = FrameKind(raw.kind);
+  h.encoding = Encoding(raw.encoding);
+  h.sh_order = raw.order;
+  h.zstd = (raw.flags & kFrameFlagZstd) != 0;
+  h.moment_resolution = raw.moments;
+  return raw;
 }
 
 bool peek_header(std::span<const std::uint8_t> message, FrameHeader& h) {
   if (message.size() < kFrameHeaderBytes || std::memcmp(message.data(), kFrameMagic, 4) != 0)
     return false;
   ByteReader r(message.subspan(4));
-  std::uint16_t version, reserved;
-  std::uint8_t kind, encoding, order, flags;
+  std::uint16_t version;
   r.u16(version);
   if (version != kProtocolVersion) return false;
-  r.u8(kind);
-  r.u8(encoding);
-  r.u8(order);
-  r.u8(flags);
-  r.u16(reserved);
-  h.kind = FrameKind(kind);
-  h.encoding = Encoding(encoding);
-  h.sh_order = order;
-  h.zstd = (flags & kFrameFlagZstd) != 0;
-  read_identity_and_clock(r, h);
+  read_header_fields(r, h);
   return true;
 }
 
 DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLimits& limits) {
+  // Magic and version first: a peer of another version gets "bad-version" whatever its header's
+  // size (version 1's was 88 bytes).
+  if (message.size() >= 4 && std::memcmp(message.data(), kFrameMagic, 4) != 0)
+    return reject(RejectKind::kBadMagic, "not a DDPF probe frame");
+  if (message.size() >= 6) {
+    const std::uint16_t version = std::uint16_t(message[4] | (message[5] << 8));
+    if (version != kProtocolVersion)
+      return reject(RejectKind::kBadVersion,
+                    fmt::format("protocol version {}, this build speaks {}", version, kProtocolVersion));
+  }
   if (message.size() < kFrameHeaderBytes)
     return reject(RejectKind::kTruncated,
                   fmt::format("{} bytes, shorter than the {}-byte header", message.size(), kFrameHeaderBytes));
-  if (std::memcmp(message.data(), kFrameMagic, 4) != 0)
-    return reject(RejectKind::kBadMagic, "not a DDPF probe frame");
-  ByteReader r(message.subspan(4, kFrameHeaderBytes - 4));
-  std::uint16_t version = 0, reserved = 0;
-  std::uint8_t kind = 0, encoding = 0, order = 0, flags = 0;
-  std::uint32_t updated = 0, deactivated = 0, payload_bytes = 0, raw_bytes = 0;
+  ByteReader r(message.subspan(6, kFrameHeaderBytes - 6));
+  std::uint32_t updated = 0, deactivated = 0, relocated = 0, payload_bytes = 0, raw_bytes = 0;
   FrameHeader h;
-  r.u16(version);
-  if (version != kProtocolVersion)
-    return reject(RejectKind::kBadVersion,
-                  fmt::format("protocol version {}, this build speaks {}", version, kProtocolVersion));
-  r.u8(kind);
-  r.u8(encoding);
-  r.u8(order);
-  r.u8(flags);
-  r.u16(reserved);
-  read_identity_and_clock(r, h);
+  const RawHeader raw = read_header_fields(r, h);
   r.u32(updated);
   r.u32(deactivated);
+  r.u32(relocated);
   r.u32(payload_bytes);
   r.u32(raw_bytes);
-  if (kind > 1) return reject(RejectKind::kBadHeader, fmt::format("unknown frame kind {}", kind));
-  if (encoding >= kEncodingCount)
-    return reject(RejectKind::kBadHeader, fmt::format("unknown encoding {}", encoding));
-  if (order < 1 || order > 4)
-    return reject(RejectKind::kBadHeader, fmt::format("SH order {} outside 1..4", order));
-  if ((flags & ~kFrameFlagZstd) != 0 || reserved != 0)
+  if (raw.kind > 1) return reject(RejectKind::kBadHeader, fmt::format("unknown frame kind {}", raw.kind));
+  if (raw.encoding >= kEncodingCount)
+    return reject(RejectKind::kBadHeader, fmt::format("unknown encoding {}", raw.encoding));
+  if (raw.order < 1 || raw.order > 4)
+    return reject(RejectKind::kBadHeader, fmt::format("SH order {} outside 1..4", raw.order));
+  if ((raw.flags & ~kFrameFlagZstd) != 0 || raw.reserved != 0)
     return reject(RejectKind::kBadHeader, "reserved flag bits set");
+  if (raw.moments > kMaxWireMomentResolution)
+    return reject(RejectKind::kBadHeader, fmt::format("moment resolution {} outside 0..{}", raw.moments,
+                                                      kMaxWireMomentResolution));
+  if (raw.moments > 0 ? !(std::isfinite(h.moment_range) && h.moment_range > 0.0f)
+                      : std::bit_cast<std::uint32_t>(h.moment_range) != 0)
+    return reject(RejectKind::kBadHeader,
+                  fmt::format("moment range {} for moment resolution {}", h.moment_range, raw.moments));
   const std::uint64_t probes = std::uint64_t(h.counts[0]) * h.counts[1] * h.counts[2];
   if (probes == 0 || probes > kMaxGridProbes)
     return reject(RejectKind::kBadHeader,
@@ -208,10 +241,6 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
                               h.counts[2], kMaxGridProbes));
   if (!std::isfinite(h.scene_time))
     return reject(RejectKind::kBadHeader, "scene time is not finite");
-  h.kind = FrameKind(kind);
-  h.encoding = Encoding(encoding);
-  h.sh_order = order;
-  h.zstd = (flags & kFrameFlagZstd) != 0;
   if (h.kind == FrameKind::kKeyframe ? h.base_frame != h.frame : h.base_frame >= h.frame)
     return reject(RejectKind::kBadHeader,
                   fmt::format("base frame {} of frame {} is not what a {} has", h.base_frame, h.frame,
@@ -220,8 +249,10 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
     return reject(RejectKind::kSizeMismatch,
                   fmt::format("{} updated + {} deactivated probes in a grid of {}", updated,
                               deactivated, probes));
-  if (h.kind == FrameKind::kKeyframe && deactivated != 0)
-    return reject(RejectKind::kSizeMismatch, "a keyframe lists deactivated probes");
+  if (relocated > std::uint64_t(updated) + deactivated)
+    return reject(RejectKind::kSizeMismatch,
+                  fmt::format("{} relocated probes among {} updated and {} deactivated", relocated,
+                              updated, deactivated));
   const std::size_t body = message.size() - kFrameHeaderBytes;
   if (body < payload_bytes)
     return reject(RejectKind::kTruncated,
@@ -230,14 +261,16 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
     return reject(RejectKind::kSizeMismatch,
                   fmt::format("{} bytes after a payload of {}", body - payload_bytes, payload_bytes));
   // The uncompressed size is bounded by the counts: 1..5 bytes per index, one flag byte per
-  // deactivated probe, fixed bytes per updated probe.
-  const std::size_t per_probe = std::size_t(probe_bytes(h.encoding, h.sh_order));
-  const std::uint64_t fixed = std::uint64_t(deactivated) + std::uint64_t(updated) * per_probe;
-  const std::uint64_t indices = std::uint64_t(updated) + deactivated;
+  // deactivated probe, a fixed record per updated probe, 12 offset bytes per relocated one.
+  const std::size_t per_probe = record_bytes(h);
+  const std::size_t sh_bytes = std::size_t(probe_bytes(h.encoding, h.sh_order));
+  const std::uint64_t fixed = std::uint64_t(deactivated) + std::uint64_t(updated) * per_probe +
+                              std::uint64_t(relocated) * 12;
+  const std::uint64_t indices = std::uint64_t(updated) + deactivated + relocated;
   if (raw_bytes < fixed + indices || raw_bytes > fixed + 5 * indices)
     return reject(RejectKind::kSizeMismatch,
-                  fmt::format("payload of {} bytes for {} updated and {} deactivated probes",
-                              raw_bytes, updated, deactivated));
+                  fmt::format("payload of {} bytes for {} updated, {} deactivated and {} relocated probes",
+                              raw_bytes, updated, deactivated, relocated));
   if (raw_bytes > limits.max_payload_bytes)
     return reject(RejectKind::kSizeMismatch,
                   fmt::format("payload of {} bytes beyond the limit of {}", raw_bytes,
@@ -262,7 +295,8 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
   ByteReader p(payload);
   DecodeResult failure;
   if (!read_indices(p, updated, std::uint32_t(probes), f.updated, failure) ||
-      !read_indices(p, deactivated, std::uint32_t(probes), f.deactivated, failure))
+      !read_indices(p, deactivated, std::uint32_t(probes), f.deactivated, failure) ||
+      !read_indices(p, relocated, std::uint32_t(probes), f.relocated, failure))
     return failure;
   // Disjoint: a probe is either updated or deactivated.
   for (std::size_t a = 0, b = 0; a < f.updated.size() && b < f.deactivated.size();) {
@@ -271,7 +305,17 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
                     fmt::format("probe {} both updated and deactivated", f.updated[a]));
     f.updated[a] < f.deactivated[b] ? ++a : ++b;
   }
-  std::span<const std::uint8_t> flag_bytes, coefficient_bytes;
+  // Relocated probes are updated or deactivated ones (an offset travels with the probe's news).
+  for (std::size_t a = 0, d = 0, b = 0; b < f.relocated.size();) {
+    const std::uint32_t want = f.relocated[b];
+    while (a < f.updated.size() && f.updated[a] < want) ++a;
+    while (d < f.deactivated.size() && f.deactivated[d] < want) ++d;
+    if (!(a < f.updated.size() && f.updated[a] == want) && !(d < f.deactivated.size() && f.deactivated[d] == want))
+      return reject(RejectKind::kBadVisibility,
+                    fmt::format("probe {} has an offset but is neither updated nor deactivated", want));
+    ++b;
+  }
+  std::span<const std::uint8_t> flag_bytes, record_bytes_in;
   if (!p.bytes(deactivated, flag_bytes))
     return reject(RejectKind::kSizeMismatch, "payload ends inside the deactivated probes' flags");
   for (std::uint8_t fl : flag_bytes)
@@ -279,18 +323,35 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
       return reject(RejectKind::kBadCoefficients,
                     fmt::format("deactivated probe flags {:#04x}", fl));
   f.deactivated_flags.assign(flag_bytes.begin(), flag_bytes.end());
-  if (p.remaining() != std::size_t(updated) * per_probe)
+  if (p.remaining() != std::size_t(updated) * per_probe + std::size_t(relocated) * 12)
     return reject(RejectKind::kSizeMismatch,
-                  fmt::format("{} coefficient bytes for {} probes of {} bytes", p.remaining(),
-                              updated, per_probe));
-  p.bytes(p.remaining(), coefficient_bytes);
+                  fmt::format("{} bytes for {} probe records of {} bytes and {} offsets", p.remaining(),
+                              updated, per_probe, relocated));
+  p.bytes(std::size_t(updated) * per_probe, record_bytes_in);
   const std::size_t n = std::size_t(coefficients_of(h.sh_order));
+  const std::size_t texels = std::size_t(h.moment_texels());
   f.coefficients.resize(std::size_t(updated) * n);
-  for (std::size_t k = 0; k < updated; ++k)
-    if (!decode_probe(h.encoding, h.sh_order, coefficient_bytes.subspan(k * per_probe, per_probe),
+  f.moments.resize(std::size_t(updated) * texels);
+  for (std::size_t k = 0; k < updated; ++k) {
+    const std::span<const std::uint8_t> record = record_bytes_in.subspan(k * per_probe, per_probe);
+    if (!decode_probe(h.encoding, h.sh_order, record.first(sh_bytes),
                       std::span(f.coefficients).subspan(k * n, n)))
       return reject(RejectKind::kBadCoefficients,
                     fmt::format("probe {}: not a valid {} code", f.updated[k], encoding_name(h.encoding)));
+    std::size_t texel = 0;
+    if (!decode_moments(record.subspan(sh_bytes), std::span(f.moments).subspan(k * texels, texels), &texel))
+      return reject(RejectKind::kBadVisibility,
+                    fmt::format("probe {}: moment texel {} is not a number in [0, 1]", f.updated[k], texel));
+  }
+  f.offsets.resize(relocated);
+  for (std::size_t k = 0; k < relocated; ++k) {
+    glm::vec3& o = f.offsets[k];
+    for (int a = 0; a < 3; ++a) p.f32(o[a]);
+    if (!std::isfinite(o.x) || !std::isfinite(o.y) || !std::isfinite(o.z) || o == glm::vec3(0.0f))
+      return reject(RejectKind::kBadVisibility,
+                    fmt::format("probe {}: offset ({}, {}, {}) is not finite and non-zero", f.relocated[k],
+                                o.x, o.y, o.z));
+  }
   result.ok = true;
   return result;
 }

@@ -1,13 +1,16 @@
-// One message of the probe stream: a fixed 88-byte header and a payload of probe indices and
-// coefficients (docs/protocol.md is the full description). Little-endian, no padding:
+// One message of the probe stream: a fixed 96-byte header and a payload of probe indices,
+// coefficients, distance moments and relocation offsets (docs/protocol.md is the full
+// description). Little-endian, no padding:
 //   offset size field
 //        0    4 magic "DDPF"
-//        4    2 u16 protocol version (kProtocolVersion)
+//        4    2 u16 protocol version (kProtocolVersion, 2)
 //        6    1 u8 kind: 0 keyframe (every active probe; the others are inactive), 1 delta
 //        7    1 u8 encoding: 0 fp16, 1 shared exponent, 2 compact (probe_encoding.h)
 //        8    1 u8 SH order 1..4
 //        9    1 u8 flags: bit 0 payload compressed with zstd; other bits zero
-//       10    2 u16 reserved, zero
+//       10    1 u8 moment resolution R: each updated probe carries an R x R distance-moment map
+//                   (probes/moment_map.h); 0: none, the client interpolates without visibility
+//       11    1 u8 reserved, zero
 //       12   12 u32 grid counts x, y, z (>= 1, product <= 2^24)
 //       24    8 u64 scene identity (geometry and probe grid, app/scene_identity.h)
 //       32    8 u64 stream: drawn at random when a server starts, so a restarted server's
@@ -18,14 +21,22 @@
 //       56    8 i64 server time, microseconds of the server's steady clock, when this frame's
 //                   probe update ended
 //       64    8 f64 scene time, seconds (the animation clock)
-//       72    4 u32 updated probes (coefficients in this message)
-//       76    4 u32 deactivated probes (deltas only: probes that became inactive)
-//       80    4 u32 payload bytes as sent (after the header; the message is exactly 88 + this)
-//       84    4 u32 payload bytes uncompressed (equal to the above without zstd)
-//   payload: updated probe indices, then deactivated probe indices, each an increasing list
-//   sent as LEB128 varints of the gaps (first index, then index - previous - 1); one flag byte
-//   per deactivated probe (bit 0 set, bit 1 inside geometry, nothing else); the updated probes'
-//   coefficients, probe_bytes(encoding, order) each, in index order. Nothing after.
+//       72    4 f32 moment range, metres (ProbeVolume::moment_range; 0 when R is 0)
+//       76    4 u32 updated probes (coefficients and moments in this message)
+//       80    4 u32 deactivated probes (deltas only: probes that became inactive)
+//       84    4 u32 relocated probes: updated or deactivated probes whose offset is not zero
+//       88    4 u32 payload bytes as sent (after the header; the message is exactly 96 + this)
+//       92    4 u32 payload bytes uncompressed (equal to the above without zstd)
+//   payload: updated probe indices, deactivated probe indices, relocated probe indices (a
+//   subset of the two), each an increasing list sent as LEB128 varints of the gaps
+//   (first index, then index - previous - 1); one flag byte per deactivated probe (bit 0 set,
+//   bit 1 inside geometry, nothing else); per updated probe, in index order, its record
+//   (record_bytes): the coefficients, probe_bytes(encoding, order), then its moment map, per
+//   texel an fp16 mean distance and an fp16 mean squared distance, / range (or range^2), in
+//   [0, 1]; then per relocated probe its offset from its grid position, 3 f32 metres.
+//   An updated or deactivated probe that is not relocated has a zero offset (an inactive
+//   probe's offset matters too: the shader weighs all 8 probes of a cell before it folds the
+//   weights). Nothing after.
 #pragma once
 
 #include <cstdint>
@@ -33,6 +44,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "net/probe_encoding.h"
@@ -40,8 +52,10 @@
 namespace ddish::net {
 
 inline constexpr char kFrameMagic[4] = {'D', 'D', 'P', 'F'};
-inline constexpr std::uint16_t kProtocolVersion = 1;
-inline constexpr std::size_t kFrameHeaderBytes = 88;
+inline constexpr std::uint16_t kProtocolVersion = 2;
+inline constexpr std::size_t kFrameHeaderBytes = 96;
+// The moment resolutions a frame may announce (probes::kMaxMomentResolution).
+inline constexpr int kMaxWireMomentResolution = 16;
 inline constexpr std::uint32_t kMaxGridProbes = 1u << 24;  // probes::ProbeGrid::kMaxProbes
 inline constexpr std::uint8_t kFrameFlagZstd = 1u << 0;
 // Deactivated probes' flag byte (the bits of probes::ProbeFlag): inactive, inside geometry.
@@ -62,9 +76,14 @@ struct FrameHeader {
   std::uint64_t base_frame = 0;
   std::int64_t server_time_us = 0;
   double scene_time = 0.0;
+  int moment_resolution = 0;  // R; 0: no moments
+  float moment_range = 0.0f;  // metres; 0 when moment_resolution is 0
 
   std::uint32_t probe_count() const { return counts[0] * counts[1] * counts[2]; }
+  int moment_texels() const { return moment_resolution * moment_resolution; }
 };
+// Bytes of one updated probe's record: its coefficients, then 2 R^2 halves of moments.
+std::size_t record_bytes(const FrameHeader& header);
 
 // A decoded message, or the parts of one to encode.
 struct ProbeFrame {
@@ -73,6 +92,20 @@ struct ProbeFrame {
   std::vector<glm::vec3> coefficients;       // updated.size() × (order+1)^2, probe after probe
   std::vector<std::uint32_t> deactivated;    // increasing, disjoint from `updated`
   std::vector<std::uint8_t> deactivated_flags;  // one per deactivated probe
+  std::vector<glm::vec2> moments;            // updated.size() × R^2 (mean d, mean d^2) / range
+  std::vector<std::uint32_t> relocated;      // increasing, a subset of updated ∪ deactivated
+  std::vector<glm::vec3> offsets;            // one per relocated probe, finite, not zero, metres
+};
+
+// The parts of a message as a server keeps them: records holds updated.size() ×
+// record_bytes(header) already encoded bytes in index order.
+struct FrameParts {
+  std::span<const std::uint32_t> updated;
+  std::span<const std::uint8_t> records;
+  std::span<const std::uint32_t> deactivated;
+  std::span<const std::uint8_t> deactivated_flags;
+  std::span<const std::uint32_t> relocated;
+  std::span<const glm::vec3> offsets;
 };
 
 // Why a message was rejected. Every kind has a name for the log and a counter on the client.
@@ -85,9 +118,11 @@ enum class RejectKind : std::uint8_t {
   kBadIndex,         // an index out of the grid, not increasing, or both updated and deactivated
   kBadCoefficients,  // Inf, NaN or a code no encoder writes
   kDecompression,    // zstd failed, or its size differs from the header's
-  kSceneMismatch,    // well formed, but of another scene or grid (the client's check)
+  kSceneMismatch,    // well formed, but of another scene, grid, order or moment map (the client's)
+  kBadVisibility,    // a moment outside [0, 1] or not finite; an offset not finite, zero, of a
+                     // probe neither updated nor deactivated, or (the client's check) beyond kMaxRelocation cells
 };
-inline constexpr int kRejectKindCount = 9;
+inline constexpr int kRejectKindCount = 10;
 std::string reject_name(RejectKind kind);
 
 struct DecodeLimits {
@@ -106,18 +141,13 @@ struct DecodeResult {
 // and `frame` is not to be used.
 DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLimits& limits = {});
 
-// Assembles a message from already encoded probes: probe_bytes holds updated.size() ×
-// probe_bytes(header.encoding, header.sh_order) bytes in index order (what a server keeps of
-// what it sent). zstd per header.zstd at `zstd_level`.
-std::vector<std::uint8_t> encode_frame(const FrameHeader& header,
-                                       std::span<const std::uint32_t> updated,
-                                       std::span<const std::uint8_t> probe_bytes,
-                                       std::span<const std::uint32_t> deactivated,
-                                       std::span<const std::uint8_t> deactivated_flags,
+// Assembles a message from already encoded probe records (what a server keeps of what it
+// sent). zstd per header.zstd at `zstd_level`.
+std::vector<std::uint8_t> encode_frame(const FrameHeader& header, const FrameParts& parts,
                                        int zstd_level = 3);
 
-// Encodes frame.coefficients itself; `saturated` (optional) counts the probes whose values
-// could not be represented exactly (probe_encoding.h).
+// Encodes frame.coefficients and frame.moments itself; `saturated` (optional) counts the probes
+// whose values could not be represented exactly (probe_encoding.h).
 std::vector<std::uint8_t> encode_frame(const ProbeFrame& frame, std::uint32_t* saturated = nullptr,
                                        int zstd_level = 3);
 

@@ -2,16 +2,38 @@
 
 #include <algorithm>
 
+#include <glm/glm.hpp>
+
 namespace ddish::net {
 namespace {
 
-void set_probe(probes::ProbeVolume& volume, std::uint32_t i, const glm::vec3* coefficients) {
+void set_probe(probes::ProbeVolume& volume, std::uint32_t i, const glm::vec3* coefficients,
+               const glm::vec2* moments, const glm::vec3& offset) {
   std::span<glm::vec3> dst = volume.coefficients(i);
   std::copy(coefficients, coefficients + dst.size(), dst.begin());
+  std::span<glm::vec2> m = volume.moments(i);
+  std::copy(moments, moments + m.size(), m.begin());
+  volume.set_offset(i, offset);
   probes::ProbeState& s = volume.state(i);
   s.flags = 0;  // active and classified: the server traced it
   s.updates = std::max(s.updates, 1u);
   s.age = 0;
+}
+
+void deactivate_probe(probes::ProbeVolume& volume, std::uint32_t i, bool inside_geometry,
+                      const glm::vec3& offset) {
+  volume.deactivate(i, inside_geometry);
+  volume.set_offset(i, offset);
+}
+
+// The offset of each probe of `list` (zero unless relocated).
+std::vector<glm::vec3> offsets_of(const std::vector<std::uint32_t>& list, const ProbeFrame& f) {
+  std::vector<glm::vec3> out(list.size(), glm::vec3(0.0f));
+  for (std::size_t a = 0, b = 0; a < list.size() && b < f.relocated.size(); ++a) {
+    while (b < f.relocated.size() && f.relocated[b] < list[a]) ++b;
+    if (b < f.relocated.size() && f.relocated[b] == list[a]) out[a] = f.offsets[b];
+  }
+  return out;
 }
 
 }  // namespace
@@ -28,6 +50,9 @@ ProbeMirror::ProbeMirror(probes::ProbeVolume& volume, std::uint64_t scene_id,
 
 bool ProbeMirror::matches(const FrameHeader& h) const {
   const glm::ivec3 c = volume_.grid().counts();
+  if (h.moment_resolution != volume_.moment_resolution() ||
+      (h.moment_resolution > 0 && h.moment_range != volume_.moment_range()))
+    return false;
   return h.scene_id == scene_id_ && h.sh_order == volume_.sh_order() &&
          h.counts[0] == std::uint32_t(c.x) && h.counts[1] == std::uint32_t(c.y) &&
          h.counts[2] == std::uint32_t(c.z);
@@ -40,6 +65,13 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
   for (const std::vector<std::uint32_t>* list : {&f.updated, &f.deactivated})
     for (std::uint32_t i : *list)
       if (i >= mine_.size() || !mine_[i]) return ApplyOutcome::kOutside;
+  // The same bound set_offset clamps to (the grid is the server's: the scene identity covers it).
+  const glm::vec3 bound = probes::kMaxRelocation * volume_.grid().spacing();
+  for (const glm::vec3& o : f.offsets)
+    if (glm::any(glm::greaterThan(glm::abs(o), bound))) return ApplyOutcome::kBadOffset;
+  const std::vector<glm::vec3> offsets = offsets_of(f.updated, f);
+  const std::vector<glm::vec3> deactivated_offsets = offsets_of(f.deactivated, f);
+  const std::size_t texels = std::size_t(volume_.moment_texels());
   if (f.header.kind == FrameKind::kKeyframe) {
     kept_ = 0;
     if (synced_ && f.header.stream_id == stream_ && f.header.frame <= frame_) return ApplyOutcome::kOld;
@@ -47,16 +79,20 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
     // the client holds stay until the new stream sends them (each probe's first update is
     // always sent), rather than the indirect light going dark after every restart.
     const bool restarted = stream_ != 0 && f.header.stream_id != stream_;
-    std::size_t next = 0;
+    std::size_t next = 0, next_off = 0;
     for (std::uint32_t i : probes_) {
       if (next < f.updated.size() && f.updated[next] == i) {
-        set_probe(volume_, i, f.coefficients.data() + next * n);
+        set_probe(volume_, i, f.coefficients.data() + next * n, f.moments.data() + next * texels, offsets[next]);
         ++next;
+      } else if (next_off < f.deactivated.size() && f.deactivated[next_off] == i) {
+        deactivate_probe(volume_, i, (f.deactivated_flags[next_off] & kWireFlagInsideGeometry) != 0,
+                         deactivated_offsets[next_off]);
+        ++next_off;
       } else if (restarted && volume_.state(i).active() && volume_.state(i).updates > 0) {
         ++kept_;
         continue;
       } else {
-        volume_.deactivate(i, false);
+        deactivate_probe(volume_, i, false, glm::vec3(0.0f));
       }
       changed.push_back(i);
     }
@@ -65,9 +101,10 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
     if (f.header.frame <= frame_) return ApplyOutcome::kOld;
     if (f.header.base_frame != frame_) return ApplyOutcome::kGap;
     for (std::size_t k = 0; k < f.updated.size(); ++k)
-      set_probe(volume_, f.updated[k], f.coefficients.data() + k * n);
+      set_probe(volume_, f.updated[k], f.coefficients.data() + k * n, f.moments.data() + k * texels, offsets[k]);
     for (std::size_t k = 0; k < f.deactivated.size(); ++k)
-      volume_.deactivate(f.deactivated[k], (f.deactivated_flags[k] & kWireFlagInsideGeometry) != 0);
+      deactivate_probe(volume_, f.deactivated[k], (f.deactivated_flags[k] & kWireFlagInsideGeometry) != 0,
+                       deactivated_offsets[k]);
     std::merge(f.updated.begin(), f.updated.end(), f.deactivated.begin(), f.deactivated.end(),
                std::back_inserter(changed));
   }

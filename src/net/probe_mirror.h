@@ -22,8 +22,9 @@ enum class ApplyOutcome {
   kApplied,
   kOld,            // not newer than what the mirror holds: dropped
   kGap,            // a delta from a frame the mirror does not hold: take a snapshot
-  kSceneMismatch,  // another scene identity, grid or SH order: refused
+  kSceneMismatch,  // another scene identity, grid, SH order or moment map: refused
   kOutside,        // a probe outside the mirror's probes (another brick's): refused
+  kBadOffset,      // a relocation offset beyond kMaxRelocation cells of this grid: refused
 };
 
 class ProbeMirror {
@@ -34,8 +35,11 @@ class ProbeMirror {
   ProbeMirror(probes::ProbeVolume& volume, std::uint64_t scene_id,
               std::vector<std::uint32_t> probes = {});
 
-  // Applies a decoded frame; `changed` receives the probes whose coefficients or flags it set
-  // (increasing), for the renderer's upload.
+  // Applies a decoded frame (nothing of it unless it is applied whole); `changed` receives the
+  // probes whose coefficients, moments, offsets or flags it set (increasing), for the
+  // renderer's upload. An updated probe takes its coefficients, its moment map and its offset
+  // (zero unless the frame lists it relocated); a deactivated one is zeroed, its moments reset
+  // and its offset zero, with the frame's inside-geometry flag.
   ApplyOutcome apply(const ProbeFrame& frame, std::vector<std::uint32_t>& changed);
 
   // Whether a keyframe has been applied, and the server frame held (valid once synced).
@@ -48,7 +52,8 @@ class ProbeMirror {
   // whatever its frame number, is taken).
   void desync() { synced_ = false; }
 
-  // Whether the frame's scene identity, grid and order are the mirror's.
+  // Whether the frame's scene identity, grid, order, moment resolution and moment range are the
+  // mirror's volume's.
   bool matches(const FrameHeader& header) const;
 
  private:

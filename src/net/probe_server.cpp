@@ -96,6 +96,12 @@ struct ProbeServer::Impl {
       Client& c = clients[id];
       c.views = std::move(views);
       c.last_heard_us = steady_now_us();
+    } else if (type == "INFO") {
+      if (parts.size() != 2) return reject("bad-info-request", "an INFO request of several parts");
+      if (options.info.empty()) return;
+      std::array<zmq::const_buffer, 3> reply = {zmq::buffer(id), zmq::str_buffer("INFO"), zmq::buffer(options.info)};
+      zmq::send_multipart(requests, reply, zmq::send_flags::dontwait);
+      clients[id].last_heard_us = steady_now_us();
     } else {
       reject("unknown-request", "request type '" + type.substr(0, 16) + "'");
     }

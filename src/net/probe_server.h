@@ -8,7 +8,9 @@
 // Requests are multipart: ["SNAP", u64 client time µs, u32 bricks wanted...] is answered
 // ["SNAP", the same 8 bytes, i64 server steady-clock time µs, then topic and keyframe of each
 // wanted brick the server owns]; ["VIEW", view message (view_message.h)] replaces that client's
-// views. A client whose last message is older than the timeout stops counting.
+// views; ["INFO"] is answered ["INFO", an empty keyframe of the stream] (its header is the
+// stream's description: protocol version, scene identity, grid, SH order, moment resolution
+// and range), which a client asks for before it sizes its volume. A client whose last message is older than the timeout stops counting.
 // ZMTP heartbeats run on every connection. Malformed requests are dropped and counted, with one
 // log line per kind.
 #pragma once
@@ -42,6 +44,9 @@ struct ServerOptions {
   // Frames queued per subscriber before the publisher drops them (the subscriber then sees a gap
   // and takes a snapshot): a few ticks of every owned brick (serve: 8 x bricks, at least 64).
   int send_hwm = 64;
+  // The answer to INFO requests: an empty keyframe of this stream
+  // (PublishedProbes::description()); empty: INFO goes unanswered.
+  std::vector<std::uint8_t> info;
 };
 
 // Microseconds of the steady clock: the time base of server_time_us and of the client's clock.

@@ -6,12 +6,18 @@
 
 namespace ddish::net {
 
-PublishedProbes::PublishedProbes(const probes::ProbeGrid& grid, int sh_order, std::uint64_t scene_id,
+PublishedProbes::PublishedProbes(const probes::ProbeVolume& volume, std::uint64_t scene_id,
                                  std::uint64_t stream_id, const StreamOptions& options,
                                  std::vector<std::uint32_t> probes)
     : options_(options),
-      coefficient_count_((sh_order + 1) * (sh_order + 1)),
-      probe_bytes_(std::size_t(probe_bytes(options.encoding, sh_order))) {
+      coefficient_count_(volume.coefficient_count()),
+      sh_bytes_(std::size_t(probe_bytes(options.encoding, volume.sh_order()))),
+      record_bytes_(sh_bytes_ + moment_bytes(volume.moment_texels())),
+      texels_(std::size_t(volume.moment_texels())) {
+  const probes::ProbeGrid& grid = volume.grid();
+  const int sh_order = volume.sh_order();
+  header_.moment_resolution = volume.moment_resolution();
+  header_.moment_range = volume.has_moments() ? volume.moment_range() : 0.0f;
   header_.kind = FrameKind::kKeyframe;
   header_.encoding = options.encoding;
   header_.sh_order = sh_order;
@@ -28,8 +34,12 @@ PublishedProbes::PublishedProbes(const probes::ProbeGrid& grid, int sh_order, st
       throw std::invalid_argument("PublishedProbes: probes must be increasing grid indices");
   probes_ = std::move(probes);
   held_.assign(probes_.size(), 0);
-  held_bytes_.assign(probes_.size() * probe_bytes_, 0);
+  held_bytes_.assign(probes_.size() * record_bytes_, 0);
   source_.assign(probes_.size() * std::size_t(coefficient_count_), glm::vec3(0.0f));
+  source_moments_.assign(probes_.size() * texels_, glm::vec2(0.0f));
+  held_offsets_.assign(probes_.size(), glm::vec3(0.0f));
+  announced_.assign(probes_.size(), kWireFlagInactive);
+  announced_offsets_.assign(probes_.size(), glm::vec3(0.0f));
   grid_probes_ = grid.probe_count();
 }
 
@@ -40,49 +50,78 @@ std::uint32_t PublishedProbes::held_probes() const {
 std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& volume,
                                                    std::uint64_t frame, std::int64_t server_time_us,
                                                    double scene_time, PublishStats* stats) {
-  if (volume.probe_count() != grid_probes_ || volume.sh_order() != header_.sh_order)
-    throw std::invalid_argument("PublishedProbes::publish: another grid or SH order");
+  if (volume.probe_count() != grid_probes_ || volume.sh_order() != header_.sh_order ||
+      volume.moment_resolution() != header_.moment_resolution)
+    throw std::invalid_argument("PublishedProbes::publish: another grid, SH order or moment resolution");
   if (frame <= header_.frame)
     throw std::invalid_argument("PublishedProbes::publish: frames must increase");
   PublishStats s;
-  std::vector<std::uint32_t> updated, deactivated;
+  std::vector<std::uint32_t> updated, deactivated, relocated;
   std::vector<std::uint8_t> flags, bytes;
+  std::vector<glm::vec3> offsets;
   const std::size_t n = std::size_t(coefficient_count_);
   for (std::size_t k = 0; k < probes_.size(); ++k) {
     const std::uint32_t i = probes_[k];
     const probes::ProbeState& state = volume.state(i);
     if (!state.active()) {
-      if (held_[k]) {
+      const std::uint8_t wire = std::uint8_t(kWireFlagInactive |
+                                             (state.inside_geometry() ? kWireFlagInsideGeometry : 0));
+      // Announced once: a probe subscribers held, or whose state is not what they assume of a
+      // probe never sent (inactive, not inside geometry: left out, say).
+      const glm::vec3& offset = volume.offset(i);
+      if (held_[k] || announced_[k] != wire || announced_offsets_[k] != offset) {
         held_[k] = 0;
+        announced_[k] = wire;
+        announced_offsets_[k] = offset;
         deactivated.push_back(i);
-        flags.push_back(std::uint8_t(kWireFlagInactive |
-                                     (state.inside_geometry() ? kWireFlagInsideGeometry : 0)));
+        flags.push_back(wire);
+        if (offset != glm::vec3(0.0f)) {
+          relocated.push_back(i);
+          offsets.push_back(offset);
+        }
       }
       continue;
     }
     if (state.updates == 0) continue;  // nothing to say yet: it stays out of the interpolation
     std::span<const glm::vec3> now = volume.coefficients(i);
+    std::span<const glm::vec2> moments_now = volume.moments(i);
+    const glm::vec3& offset = volume.offset(i);
     glm::vec3* src = source_.data() + k * n;
-    if (held_[k]) {
+    glm::vec2* src_moments = source_moments_.data() + k * texels_;
+    if (held_[k] && offset == held_offsets_[k]) {
       float change = 0.0f;
       for (std::size_t j = 0; j < n; ++j) {
         const glm::vec3 d = glm::abs(now[j] - src[j]);
         change = std::max({change, d.x, d.y, d.z});
       }
+      float moment_change = 0.0f;
+      for (std::size_t t = 0; t < texels_; ++t) {
+        const glm::vec2 d = glm::abs(moments_now[t] - src_moments[t]);
+        moment_change = std::max({moment_change, d.x, d.y});
+      }
       const float l0 = std::max({std::fabs(now[0].x), std::fabs(now[0].y), std::fabs(now[0].z)});
       const float allowed = std::max(options_.threshold * l0, options_.floor);
-      if (change <= allowed) {
-        if (change > 0.0f) ++s.held_back;
+      if (change <= allowed && moment_change <= options_.threshold) {
+        if (change > 0.0f || moment_change > 0.0f) ++s.held_back;
         continue;
       }
     }
-    std::uint8_t* out = held_bytes_.data() + k * probe_bytes_;
-    if (!encode_probe(header_.encoding, header_.sh_order, now, std::span(out, probe_bytes_)))
-      ++s.saturated;
+    std::uint8_t* out = held_bytes_.data() + k * record_bytes_;
+    bool exact = encode_probe(header_.encoding, header_.sh_order, now, std::span(out, sh_bytes_));
+    exact &= encode_moments(moments_now, std::span(out + sh_bytes_, record_bytes_ - sh_bytes_));
+    if (!exact) ++s.saturated;
     std::copy(now.begin(), now.end(), src);
+    std::copy(moments_now.begin(), moments_now.end(), src_moments);
+    held_offsets_[k] = offset;
     held_[k] = 1;
+    announced_[k] = kWireFlagInactive;  // what an unlisted probe is, should it go again
+    announced_offsets_[k] = glm::vec3(0.0f);
     updated.push_back(i);
-    bytes.insert(bytes.end(), out, out + probe_bytes_);
+    bytes.insert(bytes.end(), out, out + record_bytes_);
+    if (offset != glm::vec3(0.0f)) {
+      relocated.push_back(i);
+      offsets.push_back(offset);
+    }
   }
   FrameHeader h = header_;
   h.kind = FrameKind::kDelta;
@@ -90,8 +129,8 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
   h.frame = frame;
   h.server_time_us = server_time_us;
   h.scene_time = scene_time;
-  std::vector<std::uint8_t> message =
-      encode_frame(h, updated, bytes, deactivated, flags, options_.zstd_level);
+  std::vector<std::uint8_t> message = encode_frame(
+      h, FrameParts{updated, bytes, deactivated, flags, relocated, offsets}, options_.zstd_level);
   header_.frame = frame;
   header_.server_time_us = server_time_us;
   header_.scene_time = scene_time;
@@ -102,19 +141,43 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
   return message;
 }
 
+std::vector<std::uint8_t> PublishedProbes::description() const {
+  FrameHeader h = header_;
+  h.kind = FrameKind::kKeyframe;
+  h.base_frame = h.frame;
+  h.zstd = false;
+  return encode_frame(h, FrameParts{});
+}
+
 std::vector<std::uint8_t> PublishedProbes::snapshot() const {
-  std::vector<std::uint32_t> updated;
-  std::vector<std::uint8_t> bytes;
+  std::vector<std::uint32_t> updated, relocated, deactivated;
+  std::vector<std::uint8_t> bytes, flags;
+  std::vector<glm::vec3> offsets;
   for (std::size_t k = 0; k < held_.size(); ++k) {
-    if (!held_[k]) continue;
+    if (!held_[k]) {
+      if (announced_[k] != kWireFlagInactive || announced_offsets_[k] != glm::vec3(0.0f)) {
+        deactivated.push_back(probes_[k]);  // inside geometry, or relocated before it was found so
+        flags.push_back(announced_[k]);
+        if (announced_offsets_[k] != glm::vec3(0.0f)) {
+          relocated.push_back(probes_[k]);
+          offsets.push_back(announced_offsets_[k]);
+        }
+      }
+      continue;
+    }
     updated.push_back(probes_[k]);
-    const std::uint8_t* b = held_bytes_.data() + k * probe_bytes_;
-    bytes.insert(bytes.end(), b, b + probe_bytes_);
+    const std::uint8_t* b = held_bytes_.data() + k * record_bytes_;
+    bytes.insert(bytes.end(), b, b + record_bytes_);
+    if (held_offsets_[k] != glm::vec3(0.0f)) {
+      relocated.push_back(probes_[k]);
+      offsets.push_back(held_offsets_[k]);
+    }
   }
   FrameHeader h = header_;
   h.kind = FrameKind::kKeyframe;
   h.base_frame = h.frame;
-  return encode_frame(h, updated, bytes, {}, {}, options_.zstd_level);
+  return encode_frame(h, FrameParts{updated, bytes, deactivated, flags, relocated, offsets},
+                      options_.zstd_level);
 }
 
 }  // namespace ddish::net

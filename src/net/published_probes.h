@@ -6,13 +6,21 @@
 // since the value it was last sent from (the fp32 source, not the decoded copy: a probe that
 // is not traced is never re-sent for its own rounding). A subscriber's probe therefore differs
 // from the server's by at most that amount plus the encoding's error (probe_encoding.h).
-// threshold 0 and floor 0: every probe whose coefficients changed at all is sent.
+// threshold 0 and floor 0: every probe whose coefficients changed at all is sent. With distance
+// moments (a volume of moment resolution R > 0), a probe is also re-sent when a moment texel
+// moved by more than `threshold` (the moments are fractions of the range, so the same number
+// reads as a fraction of it), and whenever its relocation offset changed: a sent probe always
+// carries its whole record (coefficients, moments, offset).
 //
 // A stream may carry a subset of the grid's probes (a brick, bricks.h): then its frames list
 // only those, and its keyframes say nothing of the others.
 // Probes that were never sent or became inactive are not held: a keyframe lists only the held
-// probes (the others are inactive for the client), and a delta announces a probe that became
-// inactive once, with its flags, never its coefficients. The snapshot (a keyframe of the last
+// probes with their records (the others are inactive for the client) and, as deactivated, the
+// probes found inside geometry; a delta announces a probe that became inactive once, with its
+// flags, never its coefficients (a probe never sent is announced only when found inside
+// geometry or with a relocation offset: a plain inactive one at its grid position, left out say,
+// is what an unlisted probe already is). Inactive probes' offsets travel too: the shader weighs
+// all 8 probes of a cell, active or not, before it folds the weights. The snapshot (a keyframe of the last
 // published frame) is built from the exact bytes that were sent, so a late joiner holds what
 // every other subscriber holds and later deltas keep the same bound for it.
 #pragma once
@@ -45,12 +53,14 @@ class PublishedProbes {
  public:
   // stream_id: this server run's (probe_frame.h), drawn at random at start. `probes`
   // (increasing): the only probes this stream carries, a brick's (bricks.h); empty: all of them.
-  PublishedProbes(const probes::ProbeGrid& grid, int sh_order, std::uint64_t scene_id,
+  // `volume` gives the grid, the SH order and the moment resolution and range of every frame.
+  PublishedProbes(const probes::ProbeVolume& volume, std::uint64_t scene_id,
                   std::uint64_t stream_id, const StreamOptions& options,
                   std::vector<std::uint32_t> probes = {});
 
   // Frame `frame` (> the last published one): the delta from the last published frame to
-  // `volume` (same grid and order). server_time_us: when its probe update ended.
+  // `volume` (same grid, order and moment resolution). server_time_us: when its probe update
+  // ended.
   std::vector<std::uint8_t> publish(const probes::ProbeVolume& volume, std::uint64_t frame,
                                     std::int64_t server_time_us, double scene_time,
                                     PublishStats* stats = nullptr);
@@ -58,6 +68,11 @@ class PublishedProbes {
   // A keyframe of what subscribers hold after the last published frame (frame 0, empty, before
   // the first publish).
   std::vector<std::uint8_t> snapshot() const;
+
+  // An empty keyframe of this stream (no probes): its header describes the stream (grid, SH
+  // order, moment resolution and range) for a client that sizes its volume before it takes any
+  // frame (the server's INFO reply, probe_server.h).
+  std::vector<std::uint8_t> description() const;
 
   std::uint64_t frame() const { return header_.frame; }
   std::uint32_t held_probes() const;
@@ -67,12 +82,18 @@ class PublishedProbes {
   FrameHeader header_;  // of the last published frame
   StreamOptions options_;
   int coefficient_count_;
-  std::size_t probe_bytes_;
+  std::size_t sh_bytes_;
+  std::size_t record_bytes_;
+  std::size_t texels_;
   std::uint32_t grid_probes_ = 0;
   std::vector<std::uint32_t> probes_;     // the probes carried (grid indices, increasing)
   std::vector<std::uint8_t> held_;        // per probe: 1 while subscribers hold it
-  std::vector<std::uint8_t> held_bytes_;  // per probe: the bytes last sent
+  std::vector<std::uint8_t> held_bytes_;  // per probe: the record last sent
   std::vector<glm::vec3> source_;         // per probe: the coefficients they were sent from
+  std::vector<glm::vec2> source_moments_; // per probe: the moments they were sent from
+  std::vector<glm::vec3> held_offsets_;   // per probe: the offset last sent
+  std::vector<std::uint8_t> announced_;   // per probe not held: the flags subscribers hold
+  std::vector<glm::vec3> announced_offsets_;  // ... and the offset
 };
 
 }  // namespace ddish::net

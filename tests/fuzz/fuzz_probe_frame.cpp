@@ -1,11 +1,17 @@
 // libFuzzer target for the probe stream's decoder (net/probe_frame.h): any byte string is either
-// rejected with a reason or decodes to a frame whose every field is in range; a decoded frame
-// re-encodes to a message that decodes to the same indices, and applies to a mirror of its grid.
-// Seeds: tests/fuzz/corpus/probe_frame/ (keyframes and deltas in every encoding, with zstd).
+// rejected with a reason or decodes to a frame whose every field is in range (indices, finite
+// coefficients, moments in [0, 1], finite non-zero offsets of updated or deactivated probes); a decoded frame
+// re-encodes to a message that decodes to the same indices, moments and offsets, and applies to
+// a mirror of its grid and moment resolution, or is refused there for an offset beyond
+// kMaxRelocation cells. Seeds: tests/fuzz/corpus/probe_frame/ (keyframes and deltas in every
+// encoding, with zstd, L1 without moments, L2 and L4 with 2x2 and 4x4 moment maps and relocated
+// probes, and one version-1 frame).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "fuzz_support.h"
 #include "net/probe_frame.h"
@@ -32,23 +38,40 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(f.deactivated[k] < probes && (k == 0 || f.deactivated[k] > f.deactivated[k - 1]));
   for (const glm::vec3& v : f.coefficients)
     require(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
+  require(f.moments.size() == f.updated.size() * std::size_t(f.header.moment_texels()));
+  for (const glm::vec2& m : f.moments) require(m.x >= 0.0f && m.x <= 1.0f && m.y >= 0.0f && m.y <= 1.0f);
+  require(f.relocated.size() == f.offsets.size() &&
+          f.relocated.size() <= f.updated.size() + f.deactivated.size());
+  for (const glm::vec3& o : f.offsets)
+    require(std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z) && o != glm::vec3(0.0f));
   const net::DecodeResult again = net::decode_frame(net::encode_frame(f), limits);
-  require(again.ok && again.frame.updated == f.updated && again.frame.deactivated == f.deactivated);
+  require(again.ok && again.frame.updated == f.updated && again.frame.deactivated == f.deactivated &&
+          again.frame.moments == f.moments && again.frame.relocated == f.relocated &&
+          again.frame.offsets == f.offsets);
   if (probes <= 4096) {
     probes::ProbeVolume volume(
         probes::ProbeGrid(scene::Aabb{glm::vec3(0.0f), glm::vec3(1.0f)},
                           {int(f.header.counts[0]), int(f.header.counts[1]), int(f.header.counts[2])}),
-        f.header.sh_order);
-    net::ProbeMirror mirror(volume, f.header.scene_id);
+        f.header.sh_order, f.header.moment_resolution);
+    net::ProbeFrame frame = f;  // the range is the client's grid's (a mismatch is refused)
+    if (frame.header.moment_resolution > 0) frame.header.moment_range = volume.moment_range();
+    net::ProbeMirror mirror(volume, frame.header.scene_id);
     std::vector<std::uint32_t> changed;
-    if (f.header.kind == net::FrameKind::kDelta) {  // take it on top of an empty keyframe
+    if (frame.header.kind == net::FrameKind::kDelta) {  // take it on top of an empty keyframe
       net::ProbeFrame base;
-      base.header = f.header;
+      base.header = frame.header;
       base.header.kind = net::FrameKind::kKeyframe;
-      base.header.frame = base.header.base_frame = f.header.base_frame;
+      base.header.frame = base.header.base_frame = frame.header.base_frame;
       require(mirror.apply(base, changed) == net::ApplyOutcome::kApplied);
     }
-    require(mirror.apply(f, changed) == net::ApplyOutcome::kApplied);
+    const glm::vec3 bound = probes::kMaxRelocation * volume.grid().spacing();
+    bool beyond = false;
+    for (const glm::vec3& o : frame.offsets) beyond |= glm::any(glm::greaterThan(glm::abs(o), bound));
+    require(mirror.apply(frame, changed) ==
+            (beyond ? net::ApplyOutcome::kBadOffset : net::ApplyOutcome::kApplied));
+    if (!beyond)
+      for (std::size_t k = 0; k < frame.relocated.size(); ++k)
+        require(volume.offset(frame.relocated[k]) == frame.offsets[k]);
   }
   return 0;
 }

@@ -59,7 +59,7 @@ struct BrickServer {
     for (std::uint32_t b = 0; b < layout.brick_count(); ++b)
       if (share.owns(b)) {
         owned.push_back(b);
-        streams.emplace_back(grid(), 2, kScene, stream, StreamOptions{.encoding = Encoding::kHalf}, layout.probes(b));
+        streams.emplace_back(volume, kScene, stream, StreamOptions{.encoding = Encoding::kHalf}, layout.probes(b));
       }
   }
   void tick(int ms) {
@@ -298,7 +298,7 @@ TEST(Bricks, MalformedBrickMessagesAreDroppedAndCounted) {
     all.state(i).flags = 0;
     all.state(i).updates = 1;
   }
-  PublishedProbes whole(grid(), 2, kScene, 5, {.encoding = Encoding::kHalf});  // both bricks in one stream
+  PublishedProbes whole(all, kScene, 5, {.encoding = Encoding::kHalf});  // both bricks in one stream
   const std::vector<std::uint8_t> both = whole.publish(all, 1, 0, 0.0), keyframe = whole.snapshot();
   std::vector<std::string> log;
   probes::ProbeVolume mine(grid(), 2);

@@ -134,7 +134,7 @@ std::string capture(int test, bool curve, bool& served) {
     volume.state(i).flags = 0;
     volume.state(i).updates = 1;
   }
-  PublishedProbes published(grid(), 2, 5, 1, {.encoding = Encoding::kHalf});
+  PublishedProbes published(volume, 5, 1, {.encoding = Encoding::kHalf});
   ProbeServer server({.bind = "tcp://127.0.0.1:" + std::to_string(server_port), .curve = server_curve});
   Relay pub(relay_port, server_port), req(relay_port + 1, server_port + 1);
   EXPECT_TRUE(pub.listening() && req.listening());

@@ -1,6 +1,9 @@
-// Probe frames: round trips of keyframes and deltas (every encoding, with and without zstd), and
-// every rejection kind of the decoder on hand-made bad messages.
+// Probe frames: round trips of keyframes and deltas (every encoding, with and without zstd, with
+// distance moments and relocation offsets), and every rejection kind of the decoder on hand-made
+// bad messages.
+#include <bit>
 #include <cmath>
+#include <limits>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -9,12 +12,16 @@
 
 #include "net/byte_io.h"
 #include "net/probe_frame.h"
+#include "sh/packing.h"
 #include "net_test_util.h"
 
 namespace ddish::net {
 namespace {
 
-ProbeFrame sample_frame(Encoding encoding, bool zstd, FrameKind kind = FrameKind::kDelta) {
+constexpr int kSampleMoments = 3;  // a 3x3 moment map per probe
+
+ProbeFrame sample_frame(Encoding encoding, bool zstd, FrameKind kind = FrameKind::kDelta,
+                        bool visibility = true) {
   ProbeFrame f;
   f.header.kind = kind;
   f.header.encoding = encoding;
@@ -35,6 +42,19 @@ ProbeFrame sample_frame(Encoding encoding, bool zstd, FrameKind kind = FrameKind
   if (kind == FrameKind::kDelta) {
     f.deactivated = {3, 21};
     f.deactivated_flags = {kWireFlagInactive, kWireFlagInactive | kWireFlagInsideGeometry};
+  }
+  if (visibility) {
+    f.header.moment_resolution = kSampleMoments;
+    f.header.moment_range = 2.5f;
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (std::size_t k = 0; k < f.updated.size() * kSampleMoments * kSampleMoments; ++k) {
+      const float m = u(rng);
+      f.moments.emplace_back(m, m * m + 0.1f * u(rng) * (1.0f - m * m));  // mean d^2 >= (mean d)^2
+    }
+    f.moments[3] = glm::vec2(1.0f);  // a texel no ray reached
+    f.moments[4] = glm::vec2(0.0f);  // a probe on a surface
+    f.relocated = {7, 20};
+    f.offsets = {glm::vec3(0.1f, -0.2f, 0.0f), glm::vec3(-1e-3f, 0.0f, 0.3f)};
   }
   return f;
 }
@@ -66,15 +86,28 @@ TEST(Frame, RoundTripEveryEncodingAndCompression) {
           for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(r.frame.coefficients[j][c], f.coefficients[j][c],
                         0.0178f * f.coefficients[j - j % 9][c] + 1e-6f);
-        if (!zstd) {  // 88 header + 7 + 2 index bytes + 2 flags + probes
-          EXPECT_EQ(bytes.size(), kFrameHeaderBytes + (kind == FrameKind::kDelta ? 11u : 7u) +
-                                      7u * std::size_t(probe_bytes(Encoding(e), 2)));
+        // Moments: fp16 rounding of a number in [0, 1], at most 2^-12 (half an ulp below 1).
+        EXPECT_EQ(h.moment_resolution, kSampleMoments);
+        EXPECT_EQ(h.moment_range, 2.5f);
+        ASSERT_EQ(r.frame.moments.size(), f.moments.size());
+        for (std::size_t t = 0; t < f.moments.size(); ++t)
+          for (int c = 0; c < 2; ++c) {
+            EXPECT_NEAR(r.frame.moments[t][c], f.moments[t][c], 0x1p-12f);
+            EXPECT_EQ(r.frame.moments[t][c], sh::half_to_float(sh::float_to_half(f.moments[t][c])));
+          }
+        EXPECT_EQ(r.frame.moments[3], glm::vec2(1.0f));
+        EXPECT_EQ(r.frame.moments[4], glm::vec2(0.0f));
+        EXPECT_EQ(r.frame.relocated, f.relocated);
+        EXPECT_EQ(r.frame.offsets, f.offsets);  // exact: the f32 the rasterizer uploads
+        if (!zstd) {  // 96 header + 7 + 2 + 2 index bytes + 2 flags + records + offsets
+          EXPECT_EQ(bytes.size(), kFrameHeaderBytes + (kind == FrameKind::kDelta ? 13u : 9u) +
+                                      7u * (std::size_t(probe_bytes(Encoding(e), 2)) + 4 * 9) + 2 * 12);
         }
       }
 }
 
 TEST(Frame, EmptyDeltaIsTheHeaderAndIndexGapsAreOneByte) {
-  ProbeFrame f = sample_frame(Encoding::kCompact, false);
+  ProbeFrame f = sample_frame(Encoding::kCompact, false, FrameKind::kDelta, false);
   f.updated.clear();
   f.coefficients.clear();
   f.deactivated.clear();
@@ -109,7 +142,7 @@ void expect_reject(const std::vector<std::uint8_t>& m, RejectKind kind) {
 
 TEST(FrameReject, Truncated) {
   std::vector<std::uint8_t> m = good_message();
-  expect_reject({m.begin(), m.begin() + 87}, RejectKind::kTruncated);
+  expect_reject({m.begin(), m.begin() + 95}, RejectKind::kTruncated);
   expect_reject({}, RejectKind::kTruncated);
   for (std::size_t cut = kFrameHeaderBytes; cut < m.size(); cut += 7)
     expect_reject({m.begin(), m.begin() + std::ptrdiff_t(cut)}, RejectKind::kTruncated);
@@ -120,8 +153,16 @@ TEST(FrameReject, MagicAndVersion) {
   m[0] = 'X';
   expect_reject(m, RejectKind::kBadMagic);
   m = good_message();
-  m[4] = 2;
+  m[4] = 3;
   expect_reject(m, RejectKind::kBadVersion);
+  // A version-1 peer's empty delta: 88 bytes, shorter than this version's header, still
+  // "bad-version" and not "truncated", so that the client's line says what is wrong.
+  m.assign(88, 0);
+  std::memcpy(m.data(), kFrameMagic, 4);
+  m[4] = 1;
+  const DecodeResult r = decode_frame(m);
+  EXPECT_EQ(r.reject, RejectKind::kBadVersion);
+  EXPECT_EQ(r.detail, "protocol version 1, this build speaks 2");
 }
 
 TEST(FrameReject, BadHeaderFields) {
@@ -135,7 +176,16 @@ TEST(FrameReject, BadHeaderFields) {
   expect_reject(with(8, 0), RejectKind::kBadHeader);   // order
   expect_reject(with(8, 5), RejectKind::kBadHeader);
   expect_reject(with(9, 2), RejectKind::kBadHeader);   // flags
-  expect_reject(with(10, 1), RejectKind::kBadHeader);  // reserved
+  expect_reject(with(10, 17), RejectKind::kBadHeader);  // moment resolution beyond 16
+  expect_reject(with(11, 1), RejectKind::kBadHeader);   // reserved
+  std::vector<std::uint8_t> none = encode_frame(sample_frame(Encoding::kHalf, false, FrameKind::kDelta, false));
+  put32(none, 72, std::bit_cast<std::uint32_t>(1.0f));  // a range without moments
+  expect_reject(none, RejectKind::kBadHeader);
+  for (float range : {0.0f, -1.0f, std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    std::vector<std::uint8_t> m = good_message();
+    put32(m, 72, std::bit_cast<std::uint32_t>(range));
+    expect_reject(m, RejectKind::kBadHeader);
+  }
   std::vector<std::uint8_t> m = good_message();
   put32(m, 12, 0);  // empty grid
   expect_reject(m, RejectKind::kBadHeader);
@@ -155,17 +205,22 @@ TEST(FrameReject, SizeMismatch) {
   m.push_back(0);  // a byte after the payload
   expect_reject(m, RejectKind::kSizeMismatch);
   m = good_message();
-  put32(m, 72, 25);  // more updated probes than the grid holds
+  put32(m, 76, 25);  // more updated probes than the grid holds
   expect_reject(m, RejectKind::kSizeMismatch);
   m = good_message();
-  put32(m, 72, 6);  // one probe fewer than the payload carries
+  put32(m, 76, 6);  // one probe fewer than the payload carries
   expect_reject(m, RejectKind::kSizeMismatch);
   m = good_message();
-  put32(m, 84, 5000);  // uncompressed size unlike the payload's
+  put32(m, 84, 10);  // more relocated probes than updated and deactivated ones
   expect_reject(m, RejectKind::kSizeMismatch);
-  ProbeFrame key = sample_frame(Encoding::kHalf, false, FrameKind::kKeyframe);
-  m = encode_frame(key);
-  put32(m, 76, 1);  // a keyframe announcing a deactivated probe
+  m = good_message();
+  put32(m, 84, 1);  // one relocated probe fewer than the payload carries: the lists misalign
+  EXPECT_FALSE(decode_frame(m).ok);
+  m = good_message();
+  m[10] = kSampleMoments + 1;  // moment maps larger than the records
+  expect_reject(m, RejectKind::kSizeMismatch);
+  m = good_message();
+  put32(m, 92, 5000);  // uncompressed size unlike the payload's
   expect_reject(m, RejectKind::kSizeMismatch);
   DecodeLimits tight;
   tight.max_payload_bytes = 100;
@@ -188,7 +243,7 @@ TEST(FrameReject, BadIndices) {
 }
 
 TEST(FrameReject, BadCoefficients) {
-  std::vector<std::uint8_t> m = good_message();
+  std::vector<std::uint8_t> m = encode_frame(sample_frame(Encoding::kHalf, false, FrameKind::kDelta, false));
   // The last probe's last half becomes Inf; then NaN.
   m[m.size() - 1] = 0x7c, m[m.size() - 2] = 0x00;
   expect_reject(m, RejectKind::kBadCoefficients);
@@ -197,6 +252,40 @@ TEST(FrameReject, BadCoefficients) {
   ProbeFrame f = sample_frame(Encoding::kHalf, false);
   f.deactivated_flags[0] = 0x04;  // not a flag the stream carries
   expect_reject(encode_frame(f), RejectKind::kBadCoefficients);
+}
+
+// Moments outside [0, 1] or not numbers, offsets that are not finite or zero or of a probe that
+// is not updated: "bad-visibility", with the probe named.
+TEST(FrameReject, BadVisibility) {
+  const std::size_t record = std::size_t(probe_bytes(Encoding::kHalf, 2)) + 4 * 9;
+  // The payload after the index lists and flags: 7 + 2 + 2 index bytes, 2 flag bytes.
+  const std::size_t records_at = kFrameHeaderBytes + 13;
+  const std::size_t first_moment = records_at + std::size_t(probe_bytes(Encoding::kHalf, 2));
+  for (std::uint16_t half : {std::uint16_t(0x3c01), std::uint16_t(0x4000), std::uint16_t(0x8001),
+                             std::uint16_t(0x7c00), std::uint16_t(0x7e00)}) {  // >1, 2, <0, Inf, NaN
+    for (std::size_t at : {first_moment, first_moment + 2 * 9 + 4, records_at + 6 * record + record - 2}) {
+      std::vector<std::uint8_t> m = good_message();
+      m[at] = std::uint8_t(half), m[at + 1] = std::uint8_t(half >> 8);
+      const DecodeResult r = decode_frame(m);
+      EXPECT_EQ(r.reject, RejectKind::kBadVisibility) << r.detail;
+      EXPECT_NE(r.detail.find("moment texel"), std::string::npos) << r.detail;
+    }
+  }
+  for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    ProbeFrame f = sample_frame(Encoding::kHalf, false);
+    f.offsets[1].y = bad;
+    expect_reject(encode_frame(f), RejectKind::kBadVisibility);
+  }
+  ProbeFrame f = sample_frame(Encoding::kHalf, false);
+  f.offsets[0] = glm::vec3(0.0f);  // listed, but not relocated: no encoder writes it
+  expect_reject(encode_frame(f), RejectKind::kBadVisibility);
+  f = sample_frame(Encoding::kHalf, false);
+  f.relocated = {7, 22};  // 22 is neither updated nor deactivated
+  const DecodeResult r = decode_frame(encode_frame(f));
+  EXPECT_EQ(r.reject, RejectKind::kBadVisibility);
+  EXPECT_EQ(r.detail, "probe 22 has an offset but is neither updated nor deactivated");
+  f.relocated = {7, 21};  // a deactivated probe's offset: the shader weighs inactive probes too
+  EXPECT_TRUE(decode_frame(encode_frame(f)).ok);
 }
 
 TEST(FrameReject, Decompression) {
@@ -226,6 +315,10 @@ TEST(FrameReject, RandomCorruptionNeverCrashes) {
     }
     for (const glm::vec3& v : r.frame.coefficients)
       for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(v[c]));
+    for (const glm::vec2& v : r.frame.moments)
+      ASSERT_TRUE(v.x >= 0.0f && v.x <= 1.0f && v.y >= 0.0f && v.y <= 1.0f);
+    for (const glm::vec3& o : r.frame.offsets)
+      ASSERT_TRUE(std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z));
     for (std::uint32_t i : r.frame.updated) ASSERT_LT(i, r.frame.header.probe_count());
   }
   EXPECT_GT(rejected, 1000);

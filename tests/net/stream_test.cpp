@@ -1,6 +1,7 @@
 // The change-driven stream: what the server publishes (PublishedProbes) and what a client's
 // mirror makes of it (ProbeMirror): empty deltas for a static volume, the threshold's error
-// bound, late joiners holding what everyone holds, deactivation, old / gap / other-scene frames.
+// bound, late joiners holding what everyone holds, deactivation, old / gap / other-scene frames,
+// and the visibility data (distance moments, relocation offsets, probe states) end to end.
 #include <cmath>
 #include <random>
 #include <vector>
@@ -9,6 +10,7 @@
 
 #include "net/probe_mirror.h"
 #include "net/published_probes.h"
+#include "sh/packing.h"
 #include "net_test_util.h"
 
 namespace ddish::net {
@@ -39,7 +41,7 @@ DecodeResult decode_ok(const std::vector<std::uint8_t>& m) {
 TEST(Stream, StaticVolumeSendsOnceThenHeadersOnly) {
   std::mt19937_64 rng(1);
   probes::ProbeVolume server = make_volume(rng);
-  PublishedProbes pub(server.grid(), 2, kScene, 1, {.encoding = Encoding::kCompact, .threshold = 0.01f});
+  PublishedProbes pub(server, kScene, 1, {.encoding = Encoding::kCompact, .threshold = 0.01f});
   PublishStats s;
   const auto first = pub.publish(server, 1, 100, 0.0, &s);
   EXPECT_EQ(s.sent, 64u);
@@ -60,7 +62,7 @@ TEST(Stream, ThresholdBoundsTheClientError) {
   probes::ProbeVolume client = client_volume();
   ProbeMirror mirror(client, kScene);
   const float threshold = 0.02f;
-  PublishedProbes pub(server.grid(), 2, kScene, 1, {.encoding = Encoding::kHalf, .threshold = threshold});
+  PublishedProbes pub(server, kScene, 1, {.encoding = Encoding::kHalf, .threshold = threshold});
   std::normal_distribution<float> noise(0.0f, 0.004f);
   std::uint64_t sent = 0, held_back = 0;
   std::vector<std::uint32_t> changed;
@@ -91,7 +93,7 @@ TEST(Stream, LateJoinerHoldsWhatEveryoneHolds) {
   probes::ProbeVolume server = make_volume(rng);
   probes::ProbeVolume early = client_volume(), late = client_volume();
   ProbeMirror early_mirror(early, kScene), late_mirror(late, kScene);
-  PublishedProbes pub(server.grid(), 2, kScene, 1, {.encoding = Encoding::kCompact, .zstd = true, .threshold = 0.01f});
+  PublishedProbes pub(server, kScene, 1, {.encoding = Encoding::kCompact, .zstd = true, .threshold = 0.01f});
   std::vector<std::uint32_t> changed;
   ASSERT_EQ(early_mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
   std::normal_distribution<float> noise(0.0f, 0.01f);
@@ -119,14 +121,16 @@ TEST(Stream, InactiveProbesAreAnnouncedOnceAndNeverSent) {
   probes::ProbeVolume server = make_volume(rng);
   server.deactivate(5, true);
   server.state(9).updates = 0;  // active, never traced: nothing to say
-  PublishedProbes pub(server.grid(), 2, kScene, 1, {});
+  PublishedProbes pub(server, kScene, 1, {});
   probes::ProbeVolume client = client_volume();
   ProbeMirror mirror(client, kScene);
   std::vector<std::uint32_t> changed;
   ASSERT_EQ(mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
   DecodeResult r = decode_ok(pub.publish(server, 1, 0, 0.0));
   EXPECT_EQ(r.frame.updated.size(), 62u);
-  EXPECT_TRUE(r.frame.deactivated.empty());  // never held, so nothing to take back
+  // Never held, but inside geometry: announced once (a client assumes a probe never sent
+  // inactive, not inside).
+  ASSERT_EQ(r.frame.deactivated, std::vector<std::uint32_t>{5});
   ASSERT_EQ(mirror.apply(r.frame, changed), ApplyOutcome::kApplied);
   EXPECT_FALSE(client.state(5).active());
   server.deactivate(12, true);
@@ -144,12 +148,13 @@ TEST(Stream, InactiveProbesAreAnnouncedOnceAndNeverSent) {
   EXPECT_TRUE(r.frame.deactivated.empty());
   const DecodeResult snap = decode_ok(pub.snapshot());
   EXPECT_EQ(snap.frame.updated.size(), 61u);  // 64 less 5, 9 and 12
+  EXPECT_EQ(snap.frame.deactivated, (std::vector<std::uint32_t>{5, 12}));  // inside geometry
 }
 
 TEST(Mirror, OldGapAndOtherSceneFrames) {
   std::mt19937_64 rng(5);
   probes::ProbeVolume server = make_volume(rng);
-  PublishedProbes pub(server.grid(), 2, kScene, 1, {});
+  PublishedProbes pub(server, kScene, 1, {});
   probes::ProbeVolume client = client_volume();
   ProbeMirror mirror(client, kScene);
   std::vector<std::uint32_t> changed;
@@ -161,15 +166,15 @@ TEST(Mirror, OldGapAndOtherSceneFrames) {
   pub.publish(server, 2, 0, 0.0);  // lost
   EXPECT_EQ(mirror.apply(decode_ok(pub.publish(server, 3, 0, 0.0)).frame, changed), ApplyOutcome::kGap);
   // Another scene, another grid.
-  PublishedProbes other(server.grid(), 2, kScene + 1, 1, {});
+  PublishedProbes other(server, kScene + 1, 1, {});
   EXPECT_EQ(mirror.apply(decode_ok(other.snapshot()).frame, changed), ApplyOutcome::kSceneMismatch);
   probes::ProbeVolume coarse(probes::ProbeGrid(scene::Aabb{glm::vec3(0.0f), glm::vec3(4.0f)}, {2, 4, 8}), 2);
-  PublishedProbes regridded(coarse.grid(), 2, kScene, 1, {});
+  PublishedProbes regridded(coarse, kScene, 1, {});
   EXPECT_EQ(mirror.apply(decode_ok(regridded.snapshot()).frame, changed), ApplyOutcome::kSceneMismatch);
   EXPECT_EQ(mirror.frame(), 1u);
   // A restarted server (another stream): its delta is a gap, its keyframe is taken although
   // its frame number is lower.
-  PublishedProbes restarted(server.grid(), 2, kScene, 2, {});
+  PublishedProbes restarted(server, kScene, 2, {});
   restarted.publish(server, 1, 0, 0.0);
   EXPECT_EQ(mirror.apply(decode_ok(restarted.publish(server, 2, 0, 0.0)).frame, changed), ApplyOutcome::kGap);
   EXPECT_EQ(mirror.apply(decode_ok(restarted.snapshot()).frame, changed), ApplyOutcome::kApplied);
@@ -181,7 +186,7 @@ TEST(Mirror, ARestartedServerLeavesTheHeldProbesUntilItSendsThem) {
   std::mt19937_64 rng(6);
   probes::ProbeVolume server = make_volume(rng);
   server.deactivate(7, true);
-  PublishedProbes pub(server.grid(), 2, kScene, 1, {});
+  PublishedProbes pub(server, kScene, 1, {});
   probes::ProbeVolume client = client_volume();
   ProbeMirror mirror(client, kScene);
   std::vector<std::uint32_t> changed;
@@ -199,7 +204,7 @@ TEST(Mirror, ARestartedServerLeavesTheHeldProbesUntilItSendsThem) {
     fresh.state(i).updates = 1;
   }
   fresh.deactivate(7, true);
-  PublishedProbes restarted(server.grid(), 2, kScene, 2, {});
+  PublishedProbes restarted(server, kScene, 2, {});
   restarted.publish(fresh, 1, 0, 0.0);
   mirror.desync();  // the client noticed the loss
   ASSERT_EQ(mirror.apply(decode_ok(restarted.snapshot()).frame, changed), ApplyOutcome::kApplied);
@@ -217,6 +222,98 @@ TEST(Mirror, ARestartedServerLeavesTheHeldProbesUntilItSendsThem) {
   ASSERT_EQ(mirror.apply(decode_ok(restarted.snapshot()).frame, changed), ApplyOutcome::kApplied);
   EXPECT_EQ(mirror.kept(), 0u);
   EXPECT_FALSE(client.state(40).active());
+}
+
+// A volume with 4x4 moment maps, a few relocated probes and inactive ones (inside geometry, and
+// left out), as a server with --probe-visibility 4 --probe-relocation holds it.
+probes::ProbeVolume visibility_volume(std::mt19937_64& rng) {
+  probes::ProbeVolume v(probes::ProbeGrid(scene::Aabb{glm::vec3(0.0f), glm::vec3(4.0f)}, {4, 4, 4}), 2, 4);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (std::uint32_t i = 0; i < v.probe_count(); ++i) {
+    v.set_sh(i, test::radiance_probe(rng, 2, 1.0f));
+    v.state(i).flags = 0;
+    v.state(i).updates = 1;
+    for (glm::vec2& m : v.moments(i)) {
+      const float d = u(rng);
+      m = glm::vec2(d, d * d);
+    }
+  }
+  v.set_offset(5, glm::vec3(0.45f, -0.3f, 0.01f));  // at the bound on x: 0.45 of a 1 m cell
+  v.set_offset(40, glm::vec3(-0.2f, 0.0f, 0.45f));
+  v.deactivate(9, true);    // inside geometry
+  v.deactivate(33, false);  // left out (no surface near it)
+  return v;
+}
+
+void expect_same_visibility(const probes::ProbeVolume& client, const probes::ProbeVolume& server) {
+  for (std::uint32_t i = 0; i < server.probe_count(); ++i) {
+    EXPECT_EQ(client.state(i).active(), server.state(i).active()) << i;
+    EXPECT_EQ(client.state(i).inside_geometry(), server.state(i).inside_geometry()) << i;
+    EXPECT_EQ(client.offset(i), server.offset(i)) << i;  // exact: f32 on the wire
+    for (std::size_t t = 0; t < server.moments(i).size(); ++t)
+      for (int c = 0; c < 2; ++c)  // the halves the rasterizer would upload from either
+        EXPECT_EQ(sh::float_to_half(client.moments(i)[t][c]), sh::float_to_half(server.moments(i)[t][c]))
+            << i << " " << t;
+  }
+}
+
+TEST(Stream, MomentsOffsetsAndStatesReachEveryClient) {
+  std::mt19937_64 rng(8);
+  probes::ProbeVolume server = visibility_volume(rng);
+  PublishedProbes pub(server, kScene, 1, {.encoding = Encoding::kCompact, .threshold = 0.01f});
+  probes::ProbeVolume client(server.grid(), 2, 4);
+  ProbeMirror mirror(client, kScene);
+  std::vector<std::uint32_t> changed;
+  pub.publish(server, 1, 0, 0.0);
+  ASSERT_EQ(mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  expect_same_visibility(client, server);
+  // A moment that moves by more than the threshold re-sends its probe, and only it; a probe that
+  // leaves geometry after a reset and is relocated afresh, too.
+  server.moments(17)[3] += glm::vec2(-0.05f, 0.0f);
+  server.moments(18)[3] += glm::vec2(-0.005f, 0.0f);  // within 0.01 of the range: held back
+  server.set_offset(40, glm::vec3(0.1f, 0.1f, 0.1f));
+  server.deactivate(12, true);
+  PublishStats stats;
+  const auto delta = pub.publish(server, 2, 0, 0.0, &stats);
+  EXPECT_EQ(stats.sent, 2u);
+  EXPECT_EQ(stats.held_back, 1u);
+  EXPECT_EQ(stats.deactivated, 1u);
+  ASSERT_EQ(mirror.apply(decode_ok(delta).frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(changed, (std::vector<std::uint32_t>{12, 17, 40}));
+  server.moments(18)[3] -= glm::vec2(-0.005f, 0.0f);  // what the client holds for 18
+  expect_same_visibility(client, server);
+  // A late joiner's snapshot carries the same.
+  probes::ProbeVolume late(server.grid(), 2, 4);
+  ProbeMirror late_mirror(late, kScene);
+  ASSERT_EQ(late_mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  expect_same_visibility(late, server);
+  // Bytes: a compact L2 record is 28 + 4 x 16 = 92 bytes, an offset 12 more.
+  EXPECT_EQ(delta.size(), kFrameHeaderBytes + 2 + 1 + 1 + 1 + 2 * 92 + 12);
+}
+
+TEST(Mirror, RefusesAnotherMomentMapAndOffsetsBeyondTheCell) {
+  std::mt19937_64 rng(9);
+  probes::ProbeVolume server = visibility_volume(rng);
+  PublishedProbes pub(server, kScene, 1, {});
+  pub.publish(server, 1, 0, 0.0);
+  std::vector<std::uint32_t> changed;
+  for (int resolution : {0, 8}) {  // a client sized for no moments, or for other maps
+    probes::ProbeVolume other(server.grid(), 2, resolution);
+    ProbeMirror mirror(other, kScene);
+    EXPECT_EQ(mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kSceneMismatch);
+  }
+  // Offsets: 0.45 of the 1 m cell on an axis is the bound; a hostile server's 0.46 is refused
+  // before anything of its frame is applied.
+  probes::ProbeVolume client(server.grid(), 2, 4);
+  ProbeMirror mirror(client, kScene);
+  DecodeResult r = decode_ok(pub.snapshot());
+  r.frame.offsets[0].x = 0.46f;
+  EXPECT_EQ(mirror.apply(r.frame, changed), ApplyOutcome::kBadOffset);
+  EXPECT_FALSE(mirror.synced());
+  EXPECT_EQ(client.offset(5), glm::vec3(0.0f));
+  r.frame.offsets[0].x = -0.45f;
+  EXPECT_EQ(mirror.apply(r.frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(client.offset(5).x, -0.45f);
 }
 
 }  // namespace

@@ -4,7 +4,11 @@
 // server. Each test is bounded by its loop counts (tens of milliseconds per turn at most).
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
+#include <chrono>
+#include <cstring>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -19,8 +23,11 @@
 
 #include <gtest/gtest.h>
 #include <zmq.hpp>
+#include <zmq_addon.hpp>
 
+#include "net/bricks.h"
 #include "net/curve_keys.h"
+#include "net/endpoint.h"
 #include "net/probe_client.h"
 #include "net/probe_server.h"
 #include "net/published_probes.h"
@@ -51,8 +58,8 @@ struct Server {
 
   Server(const std::string& bind, std::uint64_t scene, std::uint64_t stream,
          std::optional<CurveServerKeys> curve = std::nullopt)
-      : published(grid(), 2, scene, stream, {.encoding = Encoding::kHalf}),
-        server({.bind = bind, .client_timeout_ms = 500, .curve = std::move(curve)}) {}
+      : published(volume, scene, stream, {.encoding = Encoding::kHalf}),
+        server({.bind = bind, .client_timeout_ms = 500, .curve = std::move(curve), .info = published.description()}) {}
 
   // One tick: every probe traced anew, the delta published, requests answered for `ms`.
   void tick(int ms = 5) {
@@ -135,6 +142,92 @@ TEST(Transport, MalformedMessagesAreDroppedAndCounted) {
   EXPECT_EQ(client.rejected(RejectKind::kBadMagic), 3u);
   EXPECT_EQ(client.rejected(RejectKind::kTruncated), 3u);
   EXPECT_EQ(log_lines.size(), 2u);  // one line per kind
+}
+
+// A server's INFO reply describes its stream (the empty keyframe's header): what a view sizes its
+// volume by before it takes any frame.
+TEST(Transport, InfoDescribesTheStream) {
+  Server s(address(6), kScene, 3);
+  std::optional<FrameHeader> h;
+  std::thread asker([&] { h = ask_stream_header(client_options(address(6)), 3000); });
+  for (int turn = 0; turn < 300 && s.frame < 3; ++turn) s.tick(5);
+  for (int turn = 0; turn < 300 && !h; ++turn) s.server.serve_requests(10, [&](std::uint32_t) { return s.published.snapshot(); });
+  asker.join();
+  ASSERT_TRUE(h);
+  EXPECT_EQ(h->scene_id, kScene);
+  EXPECT_EQ(h->stream_id, 3u);
+  EXPECT_EQ(h->counts[0], 4u);
+  EXPECT_EQ(h->sh_order, 2);
+  EXPECT_EQ(h->moment_resolution, 0);  // this test server's volume has no moments
+}
+
+// A peer of protocol version 1 (before moments: an 88-byte header): the INFO request says
+// "bad-version", the snapshot is refused with one line that names both versions, nothing applies.
+TEST(Transport, AVersionOnePeerGetsOneClearLine) {
+  const Endpoint e = parse_endpoint(address(7));
+  zmq::context_t context;
+  zmq::socket_t router(context, zmq::socket_type::router);
+  router.set(zmq::sockopt::linger, 0);
+  router.bind(e.requests());
+  std::vector<std::uint8_t> v1(88, 0);  // a version-1 empty keyframe
+  std::memcpy(v1.data(), kFrameMagic, 4);
+  v1[4] = 1;
+  std::atomic<bool> stop{false};
+  std::thread peer([&] {
+    while (!stop) {
+      zmq::pollitem_t item{router.handle(), 0, ZMQ_POLLIN, 0};
+      zmq::poll(&item, 1, std::chrono::milliseconds(10));
+      std::vector<zmq::message_t> parts;
+      if (!zmq::recv_multipart(router, std::back_inserter(parts), zmq::recv_flags::dontwait)) continue;
+      const std::string type = parts[1].to_string();
+      if (type == "INFO") {
+        std::array<zmq::const_buffer, 3> reply = {zmq::buffer(parts[0].data(), parts[0].size()),
+                                                  zmq::str_buffer("INFO"), zmq::buffer(v1)};
+        zmq::send_multipart(router, reply);
+      } else if (type == "SNAP" && parts.size() == 4) {
+        const std::string topic = brick_topic(0);
+        std::array<zmq::const_buffer, 6> reply = {zmq::buffer(parts[0].data(), parts[0].size()), zmq::str_buffer("SNAP"),
+                                                  zmq::buffer(parts[2].data(), 8), zmq::buffer(parts[2].data(), 8),
+                                                  zmq::buffer(topic), zmq::buffer(v1)};
+        zmq::send_multipart(router, reply);
+      }
+    }
+  });
+  std::string problem;
+  EXPECT_FALSE(ask_stream_header(client_options(address(7)), 2000, &problem));
+  EXPECT_EQ(problem, "bad-version: protocol version 1, this build speaks 2");
+  log_lines.clear();
+  probes::ProbeVolume mine(grid(), 2);
+  {
+    ProbeClient client(client_options(address(7)), mine, kScene);
+    for (int turn = 0; turn < 100 && client.rejected(RejectKind::kBadVersion) < 2; ++turn) client.poll(20);
+    EXPECT_GE(client.rejected(RejectKind::kBadVersion), 2u);  // every snapshot, one line
+    EXPECT_FALSE(client.ever_synced());
+  }
+  stop = true;
+  peer.join();
+  ASSERT_EQ(log_lines.size(), 1u);
+  EXPECT_EQ(log_lines[0], "refusing the probe server at " + address(7) +
+                              ": it speaks another version of the probe stream (protocol version 1, this "
+                              "build speaks 2); run the same ddish release on both sides");
+}
+
+// A client whose volume was sized for other moment maps (it started before its server, which
+// streams none) refuses the stream with a line that says so, and applies nothing.
+TEST(Transport, ServerOfOtherMomentMapsIsRefusedWithOneLine) {
+  Server s(address(2), kScene, 1);
+  probes::ProbeVolume mine(grid(), 2, 8);
+  log_lines.clear();
+  ProbeClient client(client_options(address(2)), mine, kScene);
+  for (int turn = 0; turn < 40 && client.rejected(RejectKind::kSceneMismatch) == 0; ++turn) {
+    s.tick(5);
+    client.poll(5);
+  }
+  EXPECT_FALSE(client.ever_synced());
+  EXPECT_GT(client.rejected(RejectKind::kSceneMismatch), 0u);
+  ASSERT_EQ(log_lines.size(), 1u);
+  EXPECT_NE(log_lines[0].find("its probes carry no distance moments, this client's volume 8x8 distance-moment maps"),
+            std::string::npos) << log_lines[0];
 }
 
 TEST(Transport, ServerOfAnotherSceneIsRefused) {
