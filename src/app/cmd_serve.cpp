@@ -182,7 +182,7 @@ int run_serve(const ServeArgs& a) {
   probes::Scheduler scheduler(scheduler_options(a.schedule, a.probe, budget_ms));
   // With distance moments (--probe-visibility, CPU tracer) and relocation offsets, which every
   // frame carries: a client interpolates with the visibility an in-process render has.
-  probes::ProbeVolume volume = local_volume(a.probe, placement.grid, tracer.kind == TracerKind::vulkan);
+  probes::ProbeVolume volume = local_volume(a.probe, placement.grid);
   if (const std::uint32_t n = leave_out_empty_probes(volume, s); n > 0) {
     const scene::PlanItem item = empty_probes_item(n, volume.grid());
     std::fprintf(stderr, "serve: left out %s: %s\n", item.what.c_str(), item.why.c_str());
