@@ -180,7 +180,7 @@ int run_serve(const ServeArgs& a) {
   ProbeEngine engine(tracer.kind, s, path_options, update_options(a.probe), std::nullopt);
   const double budget_ms = frame_budget_ms(a.schedule, std::nullopt);
   probes::Scheduler scheduler(scheduler_options(a.schedule, a.probe, budget_ms));
-  // With distance moments (--probe-visibility, CPU tracer) and relocation offsets, which every
+  // With distance moments (--probe-visibility, either tracer) and relocation offsets, which every
   // frame carries: a client interpolates with the visibility an in-process render has.
   probes::ProbeVolume volume = local_volume(a.probe, placement.grid);
   if (const std::uint32_t n = leave_out_empty_probes(volume, s); n > 0) {
