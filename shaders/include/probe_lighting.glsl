@@ -34,8 +34,9 @@
 // packHalf2x16(mean d, mean d^2) divided by the range visibility.z, then its relocation offset as
 // 3 float bits; the probe's distances and directions are measured from its relocated position.
 // Without relocated probes the 24 offset reads per pixel are skipped: on lavapipe each is a
-// per-lane gather, and the offsets are all zero then). The weights are then folded into the trilinear fractions, per axis
-// the share on the upper probes, and the textures are fetched once at the moved point: exact
+// per-lane gather, and the offsets are all zero then). The weights are then folded into the
+// trilinear fractions, per axis the share on the upper probes, and the textures are fetched once
+// at the moved point: exact
 // when the weights are a product over the axes (a wall across an axis hides a face of the cell),
 // an approximation otherwise, at a fraction of the cost of reading the 8 probes one by one
 // (docs/probe-visibility.md has the measurements). A volume without moments takes the plain
