@@ -27,13 +27,18 @@ layout(post_depth_coverage) in;
 #endif
 
 layout(set = 0, binding = 4) uniform sampler2DArrayShadow shadow_maps;
-// E(mu, roughness) nodes: 32 rows (roughness) of 32 values (cbrt(mu)), then 32 E_avg values;
-// then the same for dE/dF0 (kSlopeTable on), so a layer of any F0 has E + (F0 - 0.04) dE/dF0.
-layout(set = 0, binding = 5, std430) readonly buffer AlbedoTable { float albedo_table[]; };
+// E(mu, roughness) and dE/dF0 (a layer of any F0 has E + (F0 - 0.04) dE/dF0) over 32 roughness
+// nodes and 32 cbrt(mu) nodes, in cells (raster::FrameResources::albedo_table): for roughness node
+// r and cosine cell c, (E, dE/dF0) at cosine nodes c and c + 1, at r * kCosCells + c; then from
+// kAverageCells, for roughness cell r, (E_avg, dE_avg/dF0) at roughness nodes r and r + 1. One
+// vec4 load per bilinear step: on lavapipe each load from a storage buffer at a per-pixel index
+// is a per-lane gather, and the float layout took four times as many.
+layout(set = 0, binding = 5, std430) readonly buffer AlbedoTable { vec4 albedo_cells[]; };
 
 const int kCosNodes = 32;
 const int kRoughnessNodes = 32;
-const int kSlopeTable = kCosNodes * kRoughnessNodes + kRoughnessNodes;  // offset of dE/dF0
+const int kCosCells = kCosNodes - 1;
+const int kAverageCells = kRoughnessNodes * kCosCells;
 const float kMinAlpha = 1e-3;
 const float kPi = 3.14159265358979;
 const float kSpecularAaKappa = 0.18;  // the largest alpha^2 the filter adds
@@ -70,12 +75,12 @@ vec2 table_pair(int r, float tr, float x) {
   int c;
   float tc;
   locate(x, kCosNodes, c, tc);
-  const int i0 = r * kCosNodes + c;
-  const int i1 = i0 + kCosNodes;
-  vec2 e0 = vec2(albedo_table[i0], albedo_table[kSlopeTable + i0]);
-  e0 += tc * (vec2(albedo_table[i0 + 1], albedo_table[kSlopeTable + i0 + 1]) - e0);
-  vec2 e1 = vec2(albedo_table[i1], albedo_table[kSlopeTable + i1]);
-  e1 += tc * (vec2(albedo_table[i1 + 1], albedo_table[kSlopeTable + i1 + 1]) - e1);
+  const vec4 a = albedo_cells[r * kCosCells + c];
+  const vec4 b = albedo_cells[(r + 1) * kCosCells + c];
+  vec2 e0 = a.xy;
+  e0 += tc * (a.zw - e0);
+  vec2 e1 = b.xy;
+  e1 += tc * (b.zw - e1);
   return e0 + tr * (e1 - e0);
 }
 
@@ -98,6 +103,25 @@ float shadow_lookup(uint layer, vec3 p) {
   const float ref = ndc.z - s.params.x;
   const float texel = frame.shadow_params.x * frame.shadow_params.y;
   float lit = 0.0;
+  if (frame.shadow_params.z > 0.5 && frame.shadow_params.y == 1.0) {
+    // Bilinear taps one texel apart weight, per axis, the four texels from i0 - 1 to i0 + 2
+    // (i0 = floor(x), x = uv * size - 0.5, f = fract(x)) by 1 - f, 1, 1, f: the same sum as two
+    // bilinear taps, one at i0 - 1 + 1 / (2 - f) scaled by 2 - f and one at i0 + 1 + f / (1 + f)
+    // scaled by 1 + f. 4 taps instead of 9, the same texels and weights (up to the filter's
+    // rounding); on lavapipe each comparison tap is a per-lane float-path fetch.
+    const vec2 x = uv / frame.shadow_params.x - 0.5;
+    const vec2 i0 = floor(x);
+    const vec2 f = x - i0;
+    const vec2 wa = 2.0 - f;
+    const vec2 wb = 1.0 + f;
+    const vec2 a = (i0 - 0.5 + 1.0 / wa) * frame.shadow_params.x;
+    const vec2 b = (i0 + 1.5 + f / wb) * frame.shadow_params.x;
+    lit = wa.x * wa.y * texture(shadow_maps, vec4(a.x, a.y, float(layer), ref)) +
+          wb.x * wa.y * texture(shadow_maps, vec4(b.x, a.y, float(layer), ref)) +
+          wa.x * wb.y * texture(shadow_maps, vec4(a.x, b.y, float(layer), ref)) +
+          wb.x * wb.y * texture(shadow_maps, vec4(b.x, b.y, float(layer), ref));
+    return lit / 9.0;
+  }
   for (int y = -1; y <= 1; ++y)
     for (int x = -1; x <= 1; ++x)
       lit += texture(shadow_maps, vec4(uv + vec2(x, y) * texel, float(layer), ref));
@@ -154,9 +178,9 @@ vec3 lighting(vec3 n, vec3 albedo, float metallic, float roughness, float normal
   int r;
   float tr;
   locate(roughness_coordinate(roughness), kRoughnessNodes, r, tr);
-  const int avg = kCosNodes * kRoughnessNodes;
-  const float e_avg_0 = mix(albedo_table[avg + r], albedo_table[avg + r + 1], tr);
-  const float s_avg_0 = mix(albedo_table[kSlopeTable + avg + r], albedo_table[kSlopeTable + avg + r + 1], tr);
+  const vec4 avg = albedo_cells[kAverageCells + r];
+  const float e_avg_0 = mix(avg.x, avg.z, tr);
+  const float s_avg_0 = mix(avg.y, avg.w, tr);
   const vec3 e_avg = material.dielectric.w * (e_avg_0 + (material.dielectric.rgb - 0.04) * s_avg_0);
   const vec3 e_v = material_layer(r, tr, x_v);
   const vec3 diffuse_lobe = (1.0 - metallic) * albedo / (kPi * (1.0 - e_avg)) * (1.0 - e_v);

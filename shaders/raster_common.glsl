@@ -25,7 +25,7 @@ struct ViewData {
 layout(set = 0, binding = 0) uniform FrameData {
   vec4 environment;    // rgb: uniform environment radiance
   uvec4 counts;        // x: punctual lights, y: shadow layers, z: views
-  vec4 shadow_params;  // x: 1 / shadow map size, y: PCF radius in texels
+  vec4 shadow_params;  // x: 1 / shadow map size, y: PCF radius in texels, z: 1 = bilinear compares
 } frame;
 
 layout(set = 0, binding = 1, std430) readonly buffer Views { ViewData views[]; };

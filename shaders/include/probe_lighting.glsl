@@ -28,11 +28,15 @@
 // each of the 8 probes gets DDGI's weight (Majercik et al. 2019): trilinear x backface
 // ((1 + cos)/2)^2 + 0.2 x Chebyshev's bound P(d >= r) <= var / (var + (r - mean)^2), cubed, taken
 // at the point moved visibility.w (0.2 n + 0.8 v) off the surface so that it does not shadow
-// itself, and crushed below 0.2 (w^3 / 0.04). The moments come from probe_moments (binding 2:
-// probe i's record at i * (R^2 + 3): its R x R octahedral texels, each packHalf2x16(mean d,
-// mean d^2) divided by the range visibility.z, then its relocation offset as 3 float bits; the
-// probe's distances and directions are measured from its relocated position). The weights are then folded into the trilinear fractions, per axis
-// the share on the upper probes, and the textures are fetched once at the moved point: exact
+// itself, and crushed below 0.2 (w^3 / 0.04). The moments come from probe_moments (binding 2: a
+// header of PROBE_MOMENT_HEADER uints, uint 0 non-zero when some probe is relocated; then probe
+// i's record at PROBE_MOMENT_HEADER + i * (R^2 + 3): its R x R octahedral texels, each
+// packHalf2x16(mean d, mean d^2) divided by the range visibility.z, then its relocation offset as
+// 3 float bits; the probe's distances and directions are measured from its relocated position.
+// Without relocated probes the 24 offset reads per pixel are skipped: on lavapipe each is a
+// per-lane gather, and the offsets are all zero then). The weights are then folded into the
+// trilinear fractions, per axis the share on the upper probes, and the textures are fetched once
+// at the moved point: exact
 // when the weights are a product over the axes (a wall across an axis hides a face of the cell),
 // an approximation otherwise, at a fraction of the cost of reading the 8 probes one by one
 // (docs/probe-visibility.md has the measurements). A volume without moments takes the plain
@@ -59,6 +63,7 @@
 #define PROBE_SH_COEFFS SH_COEFF_COUNT(PROBE_SH_ORDER)
 #define PROBE_SH_TEXTURES ((1 + 3 * PROBE_SH_COEFFS + 3) / 4)
 #define BRDF_GGX_ZH_NODES 65
+#define PROBE_MOMENT_HEADER 4u  // raster::kMomentHeaderUints
 
 // Set PROBE_SET, binding 0: the grid (raster::ProbeGridUniform, std140).
 layout(set = PROBE_SET, binding = 0, std140) uniform ProbeGridBlock {
@@ -185,17 +190,21 @@ bool probe_interpolate_visible(vec3 world_pos, vec3 normal, vec3 to_viewer,
   const uint stride = uint(probe_grid.visibility.y);
   const float inv_range = 1.0 / probe_grid.visibility.z;
   const vec3 biased = world_pos + probe_grid.visibility.w * (0.2 * normal + 0.8 * to_viewer);
+  const bool relocated = probe_moments[0] != 0u;
   vec3 upper = vec3(0.0);
   float sum_w = 0.0;
   for (int c = 0; c < 8; ++c) {
     const ivec3 o = ivec3(c & 1, (c >> 1) & 1, c >> 2);
     const ivec3 cell = min(ivec3(base) + o, counts - 1);
-    const uint rec = uint(cell.x + counts.x * (cell.y + counts.y * cell.z)) * stride;
+    const uint rec =
+        PROBE_MOMENT_HEADER + uint(cell.x + counts.x * (cell.y + counts.y * cell.z)) * stride;
     // Where the probe traced from: its grid position plus its relocation offset.
-    const uint at = rec + uint(res * res);
-    const vec3 offset = uintBitsToFloat(uvec3(probe_moments[at], probe_moments[at + 1u],
-                                              probe_moments[at + 2u]));
-    const vec3 probe_pos = probe_grid.origin.xyz + vec3(cell) * probe_grid.cell_size.xyz + offset;
+    vec3 probe_pos = probe_grid.origin.xyz + vec3(cell) * probe_grid.cell_size.xyz;
+    if (relocated) {
+      const uint at = rec + uint(res * res);
+      probe_pos += uintBitsToFloat(uvec3(probe_moments[at], probe_moments[at + 1u],
+                                         probe_moments[at + 2u]));
+    }
     const vec3 tri3 = mix(1.0 - t, t, vec3(o));
     float w = tri3.x * tri3.y * tri3.z;
     const vec3 to_probe = probe_pos - world_pos;

@@ -33,26 +33,30 @@ VkWriteDescriptorSet buffer_write(VkDescriptorSet set, std::uint32_t binding, Vk
 std::vector<float> FrameResources::albedo_table() {
   // The table's nodes are reproduced by evaluating it exactly at them: roughness node r sits at
   // alpha = kMinAlpha^(1 - y_r), cosine node c at mu = x_c^3 (specular_albedo.cpp's grid).
+  // dE/dF0 is another F0 of the dielectric layer (KHR_materials_ior, _specular).
   const Table& table = Table::get();
-  std::vector<float> out;
-  out.reserve(2 * (Table::kCosNodes * Table::kRoughnessNodes + Table::kRoughnessNodes));
+  constexpr int kCells = Table::kCosNodes - 1;
   auto roughness_at = [](int r) {
     const float y = float(r) / float(Table::kRoughnessNodes - 1);
     return std::sqrt(std::pow(trace::Ggx::kMinAlpha, 1.0f - y));
   };
+  auto cosine_at = [](int c) {
+    const float x = float(c) / float(Table::kCosNodes - 1);
+    return x * x * x;
+  };
+  std::vector<float> out;
+  out.reserve(4 * std::size_t(Table::kRoughnessNodes * kCells + Table::kRoughnessNodes - 1));
   for (int r = 0; r < Table::kRoughnessNodes; ++r)
-    for (int c = 0; c < Table::kCosNodes; ++c) {
-      const float x = float(c) / float(Table::kCosNodes - 1);
-      out.push_back(table.directional(x * x * x, roughness_at(r)));
+    for (int c = 0; c < kCells; ++c)
+      for (int k = c; k <= c + 1; ++k) {
+        out.push_back(table.directional(cosine_at(k), roughness_at(r)));
+        out.push_back(table.directional_slope(cosine_at(k), roughness_at(r)));
+      }
+  for (int r = 0; r + 1 < Table::kRoughnessNodes; ++r)
+    for (int k = r; k <= r + 1; ++k) {
+      out.push_back(table.average(roughness_at(k)));
+      out.push_back(table.average_slope(roughness_at(k)));
     }
-  for (int r = 0; r < Table::kRoughnessNodes; ++r) out.push_back(table.average(roughness_at(r)));
-  // Then dE/dF0 the same way (another F0 of the dielectric layer: KHR_materials_ior, _specular).
-  for (int r = 0; r < Table::kRoughnessNodes; ++r)
-    for (int c = 0; c < Table::kCosNodes; ++c) {
-      const float x = float(c) / float(Table::kCosNodes - 1);
-      out.push_back(table.directional_slope(x * x * x, roughness_at(r)));
-    }
-  for (int r = 0; r < Table::kRoughnessNodes; ++r) out.push_back(table.average_slope(roughness_at(r)));
   return out;
 }
 

@@ -38,8 +38,10 @@ class FrameResources {
   // Points binding 4 at the shadow-map array (a depth view in SHADER_READ_ONLY layout).
   void bind_shadow_maps(VkImageView view, VkSampler sampler);
 
-  // The albedo table as uploaded: 32 x 32 E(mu, roughness) nodes, then 32 E_avg values, then
-  // the same for dE/dF0 (trace::DielectricSpecularAlbedo::Slice::slope).
+  // The albedo table as uploaded, in vec4 cells that each hold what one bilinear step reads
+  // (one per-lane load instead of four on lavapipe): for roughness node r (32) and cosine cell c
+  // (31), (E, dE/dF0) at nodes c and c + 1; then for roughness cell r (31) (E_avg, dE_avg/dF0) at
+  // nodes r and r + 1 (trace::DielectricSpecularAlbedo::Slice::slope is dE/dF0).
   static std::vector<float> albedo_table();
 
  private:

@@ -32,7 +32,9 @@ static_assert(sizeof(ViewData) == 80);
 struct FrameData {
   glm::vec4 environment{0.0f};
   glm::uvec4 counts{0u};         // x: lights, y: shadow layers, z: views
-  glm::vec4 shadow_params{0.0f}; // x: 1 / shadow map size, y: PCF tap spacing in texels
+  // x: 1 / shadow map size, y: PCF tap spacing in texels, z: 1 where the comparison sampler
+  // filters bilinearly (the shader then reads a 1-texel-spaced 3x3 grid of taps as 4 taps)
+  glm::vec4 shadow_params{0.0f};
 };
 static_assert(sizeof(FrameData) == 48);
 

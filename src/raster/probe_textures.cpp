@@ -122,7 +122,8 @@ ProbeTextures::ProbeTextures(const gpu::Device& device, const probes::ProbeVolum
     textures_.push_back(std::move(tex));
   }
 
-  const VkDeviceSize moment_bytes = 4ull * record_uints_ * grid_.probe_count();
+  const VkDeviceSize moment_bytes =
+      record_uints_ > 0 ? 4ull * (kMomentHeaderUints + record_uints_ * grid_.probe_count()) : 0;
   staging_ = gpu::Buffer(device, kTexelBytes * n_textures * grid_.probe_count() + moment_bytes, 0,
                          gpu::MemoryUse::upload);
   moments_ = gpu::Buffer(device, moment_bytes > 0 ? moment_bytes : 16,
@@ -221,13 +222,18 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
   stats.bytes = texel_bytes;
   staging_.write(texels_.data(), texel_bytes);
   if (record_uints_ > 0) {
-    // Moment maps of the listed probes after the texels, in list order: one copy per run.
-    moment_scratch_.resize(std::size_t(record_uints_) * n);
+    // After the texels: the header (whether any probe of the whole volume is relocated, so that
+    // the shader skips reading the offsets when none is), then the listed probes' records in
+    // list order, one copy per run.
+    moment_scratch_.assign(kMomentHeaderUints + std::size_t(record_uints_) * n, 0u);
+    for (std::uint32_t p = 0; p < total && moment_scratch_[0] == 0u; ++p)
+      if (volume.offset(p) != glm::vec3(0.0f)) moment_scratch_[0] = 1u;
     k = 0;
     for (const ProbeRun& r : runs)
       for (std::uint32_t p = r.first; p < r.first + r.count; ++p, ++k)
         pack_probe_moments(volume, p,
-                           std::span(moment_scratch_).subspan(k * record_uints_, record_uints_),
+                           std::span(moment_scratch_)
+                               .subspan(kMomentHeaderUints + k * record_uints_, record_uints_),
                            stats.clamps);
     const VkDeviceSize bytes = 4ull * moment_scratch_.size();
     staging_.write(moment_scratch_.data(), bytes, texel_bytes);
@@ -240,11 +246,12 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
     before.size = VK_WHOLE_SIZE;
     vkCmdPipelineBarrier(cmd, initialized_ ? kReaderStages : VkPipelineStageFlags{VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT},
                          VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 1, &before, 0, nullptr);
-    std::vector<VkBufferCopy> copies;
-    VkDeviceSize src = texel_bytes;
+    constexpr VkDeviceSize header_bytes = 4ull * kMomentHeaderUints;
+    std::vector<VkBufferCopy> copies{{texel_bytes, 0, header_bytes}};
+    VkDeviceSize src = texel_bytes + header_bytes;
     for (const ProbeRun& r : runs) {
       const VkDeviceSize size = 4ull * record_uints_ * r.count;
-      copies.push_back({src, 4ull * record_uints_ * r.first, size});
+      copies.push_back({src, header_bytes + 4ull * record_uints_ * r.first, size});
       src += size;
     }
     vkCmdCopyBuffer(cmd, staging_.handle(), moments_.handle(), std::uint32_t(copies.size()),

@@ -9,9 +9,11 @@
 // been updated yet counts, with zero radiance): 7 textures (56 bytes a probe) at L2. Values beyond fp16 are saturated to +-65504 and counted, never stored as Inf.
 //
 // A volume with distance moments (probes/moment_map.h) also gets its moment maps in a storage
-// buffer: probe i's record at i * (R^2 + 3) uints, its R x R texels (each two halves, mean d and
-// mean d^2 over the range, low half first) then its relocation offset (3 floats, metres), which
-// the shader's visibility weights read.
+// buffer: a header of kMomentHeaderUints uints (uint 0: 1 when some probe of the volume has a
+// relocation offset, else 0; the rest 0), then probe i's record at kMomentHeaderUints +
+// i * (R^2 + 3) uints, its R x R texels (each two halves, mean d and mean d^2 over the range, low
+// half first) then its relocation offset (3 floats, metres), which the shader's visibility
+// weights read (the offsets only when the header says some probe has one).
 //
 // Descriptor set, layout(): binding 0 uniform buffer ProbeGridUniform (std140), binding 1 an
 // array of texture_count() combined image samplers (sampler3D probe_sh[]), binding 2 the moment
@@ -56,6 +58,10 @@ static_assert(sizeof(ProbeGridUniform) == 96, "std140 layout of ProbeGridBlock")
 // The shaded point is moved this many of the smallest cell sizes off the surface before the
 // Chebyshev test (DDGI's 0.75 x 0.3), so a surface does not shadow itself.
 inline constexpr float kVisibilityBiasCells = 0.225f;
+
+// Uints before the first probe record in the moment buffer (PROBE_MOMENT_HEADER in
+// probe_lighting.glsl).
+inline constexpr std::uint32_t kMomentHeaderUints = 4;
 
 struct ProbeUploadStats {
   bool full = false;           // the whole volume was copied (first upload, or most was dirty)

@@ -303,7 +303,8 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
     frame.environment = glm::vec4(scene.environment(), 0.0f);
     frame.counts = {static_cast<std::uint32_t>(layout.lights.size()),
                     static_cast<std::uint32_t>(layout.layers.size()), count, 0u};
-    frame.shadow_params = {1.0f / float(shadows_.map_size()), 1.0f, 0.0f, 0.0f};
+    frame.shadow_params = {1.0f / float(shadows_.map_size()), 1.0f,
+                           shadows_.filters_linearly() ? 1.0f : 0.0f, 0.0f};
     frame_.update(frame, view_data, layout.lights, layout.layers);
 
     double record_ms = 0.0;

@@ -36,9 +36,9 @@ ShadowMaps::ShadowMaps(const gpu::Device& device, gpu::CommandRunner& runner, st
 
   VkFormatProperties props{};
   vkGetPhysicalDeviceFormatProperties(device.physical(), kFormat, &props);
-  const bool linear = (props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
+  linear_ = (props.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
   VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  info.magFilter = info.minFilter = linear ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+  info.magFilter = info.minFilter = linear_ ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
   info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
   // Outside the map: lit (white border at depth 1 passes every comparison).
   info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;

@@ -51,12 +51,15 @@ class ShadowMaps {
   VkImageView view() const { return array_view_.get(); }  // every layer, as a 2D array
   VkSampler sampler() const { return sampler_.get(); }
   std::uint32_t map_size() const { return map_size_; }
+  // Whether the sampler filters the comparisons bilinearly (the format's linear filtering).
+  bool filters_linearly() const { return linear_; }
   std::uint32_t capacity() const { return image_.desc().layers; }
   // Depth passes recorded by the last record() call.
   std::uint32_t passes_recorded() const { return passes_; }
 
  private:
   std::uint32_t map_size_;
+  bool linear_ = false;
   gpu::Image image_;
   std::vector<gpu::ImageView> layer_views_;
   gpu::ImageView array_view_;
