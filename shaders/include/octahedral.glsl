@@ -1,6 +1,7 @@
 // The octahedral map of directions onto an R x R grid of texels (probes/moment_map.h): the
 // GPU probe tracer bins its first-hit distances with it (probe_project.comp), so its moment
-// maps have exactly the CPU tracer's texels.
+// maps have exactly the CPU tracer's texels, and the rasterizer reads the maps with it
+// (probe_lighting.glsl).
 #ifndef DDISH_OCTAHEDRAL_GLSL
 #define DDISH_OCTAHEDRAL_GLSL
 

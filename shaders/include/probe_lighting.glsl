@@ -45,6 +45,7 @@
 #define DDISH_PROBE_LIGHTING_GLSL
 
 #extension GL_GOOGLE_include_directive : enable
+#include "octahedral.glsl"
 #include "sh_basis.glsl"
 
 #ifndef PROBE_SET
@@ -151,18 +152,6 @@ bool probe_interpolate_trilinear(vec3 world_pos, out vec3 sh[PROBE_SH_COEFFS]) {
   return w > 0.0;
 }
 
-
-// Texel of an R x R octahedral map holding unit direction d (probes::moment_texel).
-int probe_moment_texel(vec3 d, int res) {
-  vec2 p = d.xy / (abs(d.x) + abs(d.y) + abs(d.z));
-  if (d.z < 0.0) {
-    const vec2 s = vec2(p.x >= 0.0 ? 1.0 : -1.0, p.y >= 0.0 ? 1.0 : -1.0);
-    p = (1.0 - abs(p.yx)) * s;
-  }
-  const ivec2 t = clamp(ivec2((p * 0.5 + 0.5) * float(res)), ivec2(0), ivec2(res - 1));
-  return t.x + res * t.y;
-}
-
 // Chebyshev's one-sided bound on P(distance >= r) for a probe whose rays in that direction met
 // geometry at mean distance m with mean square m2 (all in units of the moment range), cubed as in
 // DDGI to darken the bound's soft tail; 1 when r is no farther than the mean.
@@ -215,8 +204,8 @@ bool probe_interpolate_visible(vec3 world_pos, vec3 normal, vec3 to_viewer,
     const vec3 from_probe = biased - probe_pos;
     const float r = length(from_probe);
     if (r > 0.0) {
-      const int texel = probe_moment_texel(from_probe / r, res);
-      const vec2 m = unpackHalf2x16(probe_moments[rec + uint(texel)]);
+      const uint texel = octahedral_texel(from_probe / r, uint(res));
+      const vec2 m = unpackHalf2x16(probe_moments[rec + texel]);
       v *= probe_chebyshev(r * inv_range, m.x, m.y);
     }
     v = max(v, 1e-6);

@@ -7,7 +7,7 @@
 //
 // The octahedral mapping (Cigolle et al., "A Survey of Efficient Representations for Independent
 // Unit Vectors", 2014): dir / |dir|_1 projected onto the square; the lower hemisphere folded
-// over the diagonals. probe_lighting.glsl's probe_moment_texel is the same function.
+// over the diagonals. shaders/include/octahedral.glsl's octahedral_texel is the same function.
 #pragma once
 
 #include <cstdint>
