@@ -42,7 +42,7 @@ import json, sys
 d = json.load(open(sys.argv[1]))
 t = d["ticks"]
 first = next(x for x in t if x["probes_sent"] > 0)
-headers = 96 * d["summary"]["bricks"]  # one frame per brick (4x4x4 probes) per tick
+headers = 100 * d["summary"]["bricks"]  # one frame per brick (4x4x4 probes) per tick
 maps = f'{sys.argv[5]}x{sys.argv[5]}' if sys.argv[5] != "0" else "none"
 print(f'{sys.argv[2]},{sys.argv[3] or "no"},{maps},{first["bytes"]},{first["probes_sent"]},{(first["bytes"] - headers) / first["probes_sent"]:.2f},{sys.argv[4]}')
 PY

@@ -73,25 +73,32 @@ std::string reject_name(RejectKind kind) {
   return "unknown";
 }
 
-std::size_t record_bytes(const FrameHeader& h) {
-  return std::size_t(probe_bytes(h.encoding, h.sh_order)) + moment_bytes(h.moment_texels());
+std::size_t coefficient_bytes(const FrameHeader& h) {
+  return std::size_t(probe_bytes(h.encoding, h.sh_order));
 }
 
+std::size_t map_bytes(const FrameHeader& h) { return moment_bytes(h.moment_texels()); }
+
 std::vector<std::uint8_t> encode_frame(const FrameHeader& h, const FrameParts& parts, int zstd_level) {
-  const std::size_t per_probe = record_bytes(h);
-  if (parts.records.size() != parts.updated.size() * per_probe ||
+  const std::size_t sh_bytes = coefficient_bytes(h);
+  const std::size_t per_map = map_bytes(h);
+  if (parts.coefficients.size() != parts.updated.size() * sh_bytes ||
+      parts.maps.size() != parts.mapped.size() * per_map || parts.mapped.size() > parts.updated.size() ||
+      (per_map == 0 && !parts.mapped.empty()) ||
       parts.deactivated.size() != parts.deactivated_flags.size() ||
       parts.relocated.size() != parts.offsets.size() || parts.relocated.size() > parts.updated.size() + parts.deactivated.size())
     throw std::invalid_argument("encode_frame: probe data does not match the index lists");
   std::vector<std::uint8_t> payload;
-  payload.reserve(parts.updated.size() * (per_probe + 1) + parts.deactivated.size() * 2 +
-                  parts.relocated.size() * 13);
+  payload.reserve(parts.updated.size() * (sh_bytes + 1) + parts.mapped.size() * (per_map + 1) +
+                  parts.deactivated.size() * 2 + parts.relocated.size() * 13);
   ByteWriter p(payload);
   write_indices(p, parts.updated);
   write_indices(p, parts.deactivated);
   write_indices(p, parts.relocated);
+  write_indices(p, parts.mapped);
   p.bytes(parts.deactivated_flags);
-  p.bytes(parts.records);
+  p.bytes(parts.coefficients);
+  p.bytes(parts.maps);
   for (const glm::vec3& o : parts.offsets)
     for (int a = 0; a < 3; ++a) p.f32(o[a]);
   const std::uint32_t raw_bytes = std::uint32_t(payload.size());
@@ -125,6 +132,7 @@ std::vector<std::uint8_t> encode_frame(const FrameHeader& h, const FrameParts& p
   w.u32(std::uint32_t(parts.updated.size()));
   w.u32(std::uint32_t(parts.deactivated.size()));
   w.u32(std::uint32_t(parts.relocated.size()));
+  w.u32(std::uint32_t(parts.mapped.size()));
   w.u32(std::uint32_t(payload.size()));
   w.u32(raw_bytes);
   w.bytes(payload);
@@ -135,24 +143,28 @@ std::vector<std::uint8_t> encode_frame(const ProbeFrame& f, std::uint32_t* satur
                                        int zstd_level) {
   const int n = coefficients_of(f.header.sh_order);
   const std::size_t texels = std::size_t(f.header.moment_texels());
-  const std::size_t sh_bytes = std::size_t(probe_bytes(f.header.encoding, f.header.sh_order));
-  const std::size_t per_probe = record_bytes(f.header);
+  const std::size_t sh_bytes = coefficient_bytes(f.header);
+  const std::size_t per_map = map_bytes(f.header);
   if (f.coefficients.size() != f.updated.size() * std::size_t(n) ||
-      f.moments.size() != f.updated.size() * texels)
-    throw std::invalid_argument("encode_frame: coefficients or moments do not match the updated probes");
-  std::vector<std::uint8_t> bytes(f.updated.size() * per_probe);
-  std::uint32_t inexact = 0;
-  for (std::size_t k = 0; k < f.updated.size(); ++k) {
-    const std::span<std::uint8_t> record = std::span(bytes).subspan(k * per_probe, per_probe);
-    bool exact = encode_probe(f.header.encoding, f.header.sh_order,
-                              std::span(f.coefficients).subspan(k * std::size_t(n), std::size_t(n)),
-                              record.first(sh_bytes));
-    exact &= encode_moments(std::span(f.moments).subspan(k * texels, texels), record.subspan(sh_bytes));
-    if (!exact) ++inexact;
+      f.moments.size() != f.mapped.size() * texels)
+    throw std::invalid_argument("encode_frame: coefficients or moments do not match the probe lists");
+  std::vector<std::uint8_t> coefficients(f.updated.size() * sh_bytes), maps(f.mapped.size() * per_map);
+  std::vector<std::uint8_t> inexact(f.updated.size(), 0);
+  for (std::size_t k = 0; k < f.updated.size(); ++k)
+    inexact[k] = !encode_probe(f.header.encoding, f.header.sh_order,
+                               std::span(f.coefficients).subspan(k * std::size_t(n), std::size_t(n)),
+                               std::span(coefficients).subspan(k * sh_bytes, sh_bytes));
+  // A map's rounding counts against its probe (mapped is a subset of updated when well formed).
+  for (std::size_t m = 0, k = 0; m < f.mapped.size(); ++m) {
+    const bool exact = encode_moments(std::span(f.moments).subspan(m * texels, texels),
+                                      std::span(maps).subspan(m * per_map, per_map));
+    while (k < f.updated.size() && f.updated[k] < f.mapped[m]) ++k;
+    if (!exact && k < f.updated.size()) inexact[k] = 1;
   }
-  if (saturated) *saturated = inexact;
+  if (saturated) *saturated = std::uint32_t(std::count(inexact.begin(), inexact.end(), std::uint8_t(1)));
   return encode_frame(f.header,
-                      FrameParts{f.updated, bytes, f.deactivated, f.deactivated_flags, f.relocated, f.offsets},
+                      FrameParts{f.updated, coefficients, f.mapped, maps, f.deactivated, f.deactivated_flags,
+                                 f.relocated, f.offsets},
                       zstd_level);
 }
 
@@ -212,12 +224,13 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
     return reject(RejectKind::kTruncated,
                   fmt::format("{} bytes, shorter than the {}-byte header", message.size(), kFrameHeaderBytes));
   ByteReader r(message.subspan(6, kFrameHeaderBytes - 6));
-  std::uint32_t updated = 0, deactivated = 0, relocated = 0, payload_bytes = 0, raw_bytes = 0;
+  std::uint32_t updated = 0, deactivated = 0, relocated = 0, mapped = 0, payload_bytes = 0, raw_bytes = 0;
   FrameHeader h;
   const RawHeader raw = read_header_fields(r, h);
   r.u32(updated);
   r.u32(deactivated);
   r.u32(relocated);
+  r.u32(mapped);
   r.u32(payload_bytes);
   r.u32(raw_bytes);
   if (raw.kind > 1) return reject(RejectKind::kBadHeader, fmt::format("unknown frame kind {}", raw.kind));
@@ -253,6 +266,13 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
     return reject(RejectKind::kSizeMismatch,
                   fmt::format("{} relocated probes among {} updated and {} deactivated", relocated,
                               updated, deactivated));
+  if (raw.moments == 0 ? mapped != 0 : mapped > updated)
+    return reject(RejectKind::kSizeMismatch,
+                  fmt::format("{} moment maps for {} updated probes at moment resolution {}", mapped,
+                              updated, raw.moments));
+  if (h.kind == FrameKind::kKeyframe && raw.moments > 0 && mapped != updated)
+    return reject(RejectKind::kBadVisibility,
+                  fmt::format("a keyframe with {} moment maps for its {} probes", mapped, updated));
   const std::size_t body = message.size() - kFrameHeaderBytes;
   if (body < payload_bytes)
     return reject(RejectKind::kTruncated,
@@ -261,16 +281,17 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
     return reject(RejectKind::kSizeMismatch,
                   fmt::format("{} bytes after a payload of {}", body - payload_bytes, payload_bytes));
   // The uncompressed size is bounded by the counts: 1..5 bytes per index, one flag byte per
-  // deactivated probe, a fixed record per updated probe, 12 offset bytes per relocated one.
-  const std::size_t per_probe = record_bytes(h);
-  const std::size_t sh_bytes = std::size_t(probe_bytes(h.encoding, h.sh_order));
-  const std::uint64_t fixed = std::uint64_t(deactivated) + std::uint64_t(updated) * per_probe +
-                              std::uint64_t(relocated) * 12;
-  const std::uint64_t indices = std::uint64_t(updated) + deactivated + relocated;
+  // deactivated probe, coefficients per updated probe, a map per mapped one, 12 offset bytes
+  // per relocated one.
+  const std::size_t sh_bytes = coefficient_bytes(h);
+  const std::size_t per_map = map_bytes(h);
+  const std::uint64_t fixed = std::uint64_t(deactivated) + std::uint64_t(updated) * sh_bytes +
+                              std::uint64_t(mapped) * per_map + std::uint64_t(relocated) * 12;
+  const std::uint64_t indices = std::uint64_t(updated) + deactivated + relocated + mapped;
   if (raw_bytes < fixed + indices || raw_bytes > fixed + 5 * indices)
     return reject(RejectKind::kSizeMismatch,
-                  fmt::format("payload of {} bytes for {} updated, {} deactivated and {} relocated probes",
-                              raw_bytes, updated, deactivated, relocated));
+                  fmt::format("payload of {} bytes for {} updated, {} deactivated, {} relocated and {} mapped probes",
+                              raw_bytes, updated, deactivated, relocated, mapped));
   if (raw_bytes > limits.max_payload_bytes)
     return reject(RejectKind::kSizeMismatch,
                   fmt::format("payload of {} bytes beyond the limit of {}", raw_bytes,
@@ -296,7 +317,8 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
   DecodeResult failure;
   if (!read_indices(p, updated, std::uint32_t(probes), f.updated, failure) ||
       !read_indices(p, deactivated, std::uint32_t(probes), f.deactivated, failure) ||
-      !read_indices(p, relocated, std::uint32_t(probes), f.relocated, failure))
+      !read_indices(p, relocated, std::uint32_t(probes), f.relocated, failure) ||
+      !read_indices(p, mapped, std::uint32_t(probes), f.mapped, failure))
     return failure;
   // Disjoint: a probe is either updated or deactivated.
   for (std::size_t a = 0, b = 0; a < f.updated.size() && b < f.deactivated.size();) {
@@ -315,7 +337,14 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
                     fmt::format("probe {} has an offset but is neither updated nor deactivated", want));
     ++b;
   }
-  std::span<const std::uint8_t> flag_bytes, record_bytes_in;
+  // Mapped probes are updated ones (a map travels with its probe's coefficients).
+  for (std::size_t a = 0, b = 0; b < f.mapped.size(); ++b) {
+    while (a < f.updated.size() && f.updated[a] < f.mapped[b]) ++a;
+    if (a == f.updated.size() || f.updated[a] != f.mapped[b])
+      return reject(RejectKind::kBadVisibility,
+                    fmt::format("probe {} has a moment map but is not updated", f.mapped[b]));
+  }
+  std::span<const std::uint8_t> flag_bytes, coefficient_bytes_in, map_bytes_in;
   if (!p.bytes(deactivated, flag_bytes))
     return reject(RejectKind::kSizeMismatch, "payload ends inside the deactivated probes' flags");
   for (std::uint8_t fl : flag_bytes)
@@ -323,25 +352,27 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
       return reject(RejectKind::kBadCoefficients,
                     fmt::format("deactivated probe flags {:#04x}", fl));
   f.deactivated_flags.assign(flag_bytes.begin(), flag_bytes.end());
-  if (p.remaining() != std::size_t(updated) * per_probe + std::size_t(relocated) * 12)
+  if (p.remaining() != std::size_t(updated) * sh_bytes + std::size_t(mapped) * per_map + std::size_t(relocated) * 12)
     return reject(RejectKind::kSizeMismatch,
-                  fmt::format("{} bytes for {} probe records of {} bytes and {} offsets", p.remaining(),
-                              updated, per_probe, relocated));
-  p.bytes(std::size_t(updated) * per_probe, record_bytes_in);
+                  fmt::format("{} bytes for {} probes' coefficients of {} bytes, {} maps of {} and {} offsets",
+                              p.remaining(), updated, sh_bytes, mapped, per_map, relocated));
+  p.bytes(std::size_t(updated) * sh_bytes, coefficient_bytes_in);
+  p.bytes(std::size_t(mapped) * per_map, map_bytes_in);
   const std::size_t n = std::size_t(coefficients_of(h.sh_order));
   const std::size_t texels = std::size_t(h.moment_texels());
   f.coefficients.resize(std::size_t(updated) * n);
-  f.moments.resize(std::size_t(updated) * texels);
-  for (std::size_t k = 0; k < updated; ++k) {
-    const std::span<const std::uint8_t> record = record_bytes_in.subspan(k * per_probe, per_probe);
-    if (!decode_probe(h.encoding, h.sh_order, record.first(sh_bytes),
+  f.moments.resize(std::size_t(mapped) * texels);
+  for (std::size_t k = 0; k < updated; ++k)
+    if (!decode_probe(h.encoding, h.sh_order, coefficient_bytes_in.subspan(k * sh_bytes, sh_bytes),
                       std::span(f.coefficients).subspan(k * n, n)))
       return reject(RejectKind::kBadCoefficients,
                     fmt::format("probe {}: not a valid {} code", f.updated[k], encoding_name(h.encoding)));
+  for (std::size_t k = 0; k < mapped; ++k) {
     std::size_t texel = 0;
-    if (!decode_moments(record.subspan(sh_bytes), std::span(f.moments).subspan(k * texels, texels), &texel))
+    if (!decode_moments(map_bytes_in.subspan(k * per_map, per_map),
+                        std::span(f.moments).subspan(k * texels, texels), &texel))
       return reject(RejectKind::kBadVisibility,
-                    fmt::format("probe {}: moment texel {} is not a number in [0, 1]", f.updated[k], texel));
+                    fmt::format("probe {}: moment texel {} is not a number in [0, 1]", f.mapped[k], texel));
   }
   f.offsets.resize(relocated);
   for (std::size_t k = 0; k < relocated; ++k) {

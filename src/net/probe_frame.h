@@ -1,5 +1,5 @@
-// One message of the probe stream: a fixed 96-byte header and a payload of probe indices,
-// coefficients, distance moments and relocation offsets (docs/protocol.md is the full
+// One message of the probe stream: a fixed 100-byte header and a payload of probe indices,
+// coefficients, distance-moment maps and relocation offsets (docs/protocol.md is the full
 // description). Little-endian, no padding:
 //   offset size field
 //        0    4 magic "DDPF"
@@ -8,7 +8,7 @@
 //        7    1 u8 encoding: 0 fp16, 1 shared exponent, 2 compact (probe_encoding.h)
 //        8    1 u8 SH order 1..4
 //        9    1 u8 flags: bit 0 payload compressed with zstd; other bits zero
-//       10    1 u8 moment resolution R: each updated probe carries an R x R distance-moment map
+//       10    1 u8 moment resolution R: a probe's distance-moment map has R x R texels
 //                   (probes/moment_map.h); 0: none, the client interpolates without visibility
 //       11    1 u8 reserved, zero
 //       12   12 u32 grid counts x, y, z (>= 1, product <= 2^24)
@@ -22,18 +22,22 @@
 //                   probe update ended
 //       64    8 f64 scene time, seconds (the animation clock)
 //       72    4 f32 moment range, metres (ProbeVolume::moment_range; 0 when R is 0)
-//       76    4 u32 updated probes (coefficients and moments in this message)
+//       76    4 u32 updated probes (coefficients in this message)
 //       80    4 u32 deactivated probes (deltas only: probes that became inactive)
 //       84    4 u32 relocated probes: updated or deactivated probes whose offset is not zero
-//       88    4 u32 payload bytes as sent (after the header; the message is exactly 96 + this)
-//       92    4 u32 payload bytes uncompressed (equal to the above without zstd)
+//       88    4 u32 mapped probes: updated probes whose moment map is in this message (0 when R
+//                   is 0; a keyframe's are all its updated probes, so a client's state is
+//                   complete after it; a delta's others keep the map the client holds)
+//       92    4 u32 payload bytes as sent (after the header; the message is exactly 100 + this)
+//       96    4 u32 payload bytes uncompressed (equal to the above without zstd)
 //   payload: updated probe indices, deactivated probe indices, relocated probe indices (a
-//   subset of the two), each an increasing list sent as LEB128 varints of the gaps
-//   (first index, then index - previous - 1); one flag byte per deactivated probe (bit 0 set,
-//   bit 1 inside geometry, nothing else); per updated probe, in index order, its record
-//   (record_bytes): the coefficients, probe_bytes(encoding, order), then its moment map, per
-//   texel an fp16 mean distance and an fp16 mean squared distance, / range (or range^2), in
-//   [0, 1]; then per relocated probe its offset from its grid position, 3 f32 metres.
+//   subset of the first two), mapped probe indices (a subset of the updated), each an
+//   increasing list sent as LEB128 varints of the gaps (first index, then index - previous - 1);
+//   one flag byte per deactivated probe (bit 0 set, bit 1 inside geometry, nothing else); per
+//   updated probe, in index order, its coefficients, probe_bytes(encoding, order); per mapped
+//   probe, in index order, its moment map, moment_bytes(R^2): per texel an fp16 mean distance
+//   and an fp16 mean squared distance, / range (or range^2), in [0, 1]; then per relocated
+//   probe its offset from its grid position, 3 f32 metres.
 //   An updated or deactivated probe that is not relocated has a zero offset (an inactive
 //   probe's offset matters too: the shader weighs all 8 probes of a cell before it folds the
 //   weights). Nothing after.
@@ -53,7 +57,7 @@ namespace ddish::net {
 
 inline constexpr char kFrameMagic[4] = {'D', 'D', 'P', 'F'};
 inline constexpr std::uint16_t kProtocolVersion = 2;
-inline constexpr std::size_t kFrameHeaderBytes = 96;
+inline constexpr std::size_t kFrameHeaderBytes = 100;
 // The moment resolutions a frame may announce (probes::kMaxMomentResolution).
 inline constexpr int kMaxWireMomentResolution = 16;
 inline constexpr std::uint32_t kMaxGridProbes = 1u << 24;  // probes::ProbeGrid::kMaxProbes
@@ -82,8 +86,9 @@ struct FrameHeader {
   std::uint32_t probe_count() const { return counts[0] * counts[1] * counts[2]; }
   int moment_texels() const { return moment_resolution * moment_resolution; }
 };
-// Bytes of one updated probe's record: its coefficients, then 2 R^2 halves of moments.
-std::size_t record_bytes(const FrameHeader& header);
+// Bytes of one updated probe's coefficients, and of one mapped probe's moment map (2 R^2 halves).
+std::size_t coefficient_bytes(const FrameHeader& header);
+std::size_t map_bytes(const FrameHeader& header);
 
 // A decoded message, or the parts of one to encode.
 struct ProbeFrame {
@@ -92,16 +97,20 @@ struct ProbeFrame {
   std::vector<glm::vec3> coefficients;       // updated.size() × (order+1)^2, probe after probe
   std::vector<std::uint32_t> deactivated;    // increasing, disjoint from `updated`
   std::vector<std::uint8_t> deactivated_flags;  // one per deactivated probe
-  std::vector<glm::vec2> moments;            // updated.size() × R^2 (mean d, mean d^2) / range
+  std::vector<std::uint32_t> mapped;         // increasing, a subset of `updated` (all of it in a keyframe)
+  std::vector<glm::vec2> moments;            // mapped.size() × R^2 (mean d, mean d^2) / range
   std::vector<std::uint32_t> relocated;      // increasing, a subset of updated ∪ deactivated
   std::vector<glm::vec3> offsets;            // one per relocated probe, finite, not zero, metres
 };
 
-// The parts of a message as a server keeps them: records holds updated.size() ×
-// record_bytes(header) already encoded bytes in index order.
+// The parts of a message as a server keeps them, already encoded, in index order:
+// coefficients holds updated.size() × coefficient_bytes(header) bytes, maps mapped.size() ×
+// map_bytes(header).
 struct FrameParts {
   std::span<const std::uint32_t> updated;
-  std::span<const std::uint8_t> records;
+  std::span<const std::uint8_t> coefficients;
+  std::span<const std::uint32_t> mapped;
+  std::span<const std::uint8_t> maps;
   std::span<const std::uint32_t> deactivated;
   std::span<const std::uint8_t> deactivated_flags;
   std::span<const std::uint32_t> relocated;
@@ -119,8 +128,10 @@ enum class RejectKind : std::uint8_t {
   kBadCoefficients,  // Inf, NaN or a code no encoder writes
   kDecompression,    // zstd failed, or its size differs from the header's
   kSceneMismatch,    // well formed, but of another scene, grid, order or moment map (the client's)
-  kBadVisibility,    // a moment outside [0, 1] or not finite; an offset not finite, zero, of a
-                     // probe neither updated nor deactivated, or (the client's check) beyond kMaxRelocation cells
+  kBadVisibility,    // a moment outside [0, 1] or not finite; a mapped probe not updated; a
+                     // keyframe without the map of one of its probes; an offset not finite, zero,
+                     // of a probe neither updated nor deactivated, or (the client's check) beyond
+                     // kMaxRelocation cells
 };
 inline constexpr int kRejectKindCount = 10;
 std::string reject_name(RejectKind kind);

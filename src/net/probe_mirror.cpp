@@ -7,12 +7,15 @@
 namespace ddish::net {
 namespace {
 
+// `moments`: the probe's map, or null when the frame does not carry it (the probe keeps its own).
 void set_probe(probes::ProbeVolume& volume, std::uint32_t i, const glm::vec3* coefficients,
                const glm::vec2* moments, const glm::vec3& offset) {
   std::span<glm::vec3> dst = volume.coefficients(i);
   std::copy(coefficients, coefficients + dst.size(), dst.begin());
-  std::span<glm::vec2> m = volume.moments(i);
-  std::copy(moments, moments + m.size(), m.begin());
+  if (moments) {
+    std::span<glm::vec2> m = volume.moments(i);
+    std::copy(moments, moments + m.size(), m.begin());
+  }
   volume.set_offset(i, offset);
   probes::ProbeState& s = volume.state(i);
   s.flags = 0;  // active and classified: the server traced it
@@ -32,6 +35,16 @@ std::vector<glm::vec3> offsets_of(const std::vector<std::uint32_t>& list, const 
   for (std::size_t a = 0, b = 0; a < list.size() && b < f.relocated.size(); ++a) {
     while (b < f.relocated.size() && f.relocated[b] < list[a]) ++b;
     if (b < f.relocated.size() && f.relocated[b] == list[a]) out[a] = f.offsets[b];
+  }
+  return out;
+}
+
+// Per probe of `f.updated`, its moment map in the frame, or null when it has none there.
+std::vector<const glm::vec2*> maps_of(const ProbeFrame& f, std::size_t texels) {
+  std::vector<const glm::vec2*> out(f.updated.size(), nullptr);
+  for (std::size_t a = 0, b = 0; a < f.updated.size() && b < f.mapped.size(); ++a) {
+    while (b < f.mapped.size() && f.mapped[b] < f.updated[a]) ++b;
+    if (b < f.mapped.size() && f.mapped[b] == f.updated[a]) out[a] = f.moments.data() + b * texels;
   }
   return out;
 }
@@ -71,7 +84,7 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
     if (glm::any(glm::greaterThan(glm::abs(o), bound))) return ApplyOutcome::kBadOffset;
   const std::vector<glm::vec3> offsets = offsets_of(f.updated, f);
   const std::vector<glm::vec3> deactivated_offsets = offsets_of(f.deactivated, f);
-  const std::size_t texels = std::size_t(volume_.moment_texels());
+  const std::vector<const glm::vec2*> maps = maps_of(f, std::size_t(volume_.moment_texels()));
   if (f.header.kind == FrameKind::kKeyframe) {
     kept_ = 0;
     if (synced_ && f.header.stream_id == stream_ && f.header.frame <= frame_) return ApplyOutcome::kOld;
@@ -82,7 +95,7 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
     std::size_t next = 0, next_off = 0;
     for (std::uint32_t i : probes_) {
       if (next < f.updated.size() && f.updated[next] == i) {
-        set_probe(volume_, i, f.coefficients.data() + next * n, f.moments.data() + next * texels, offsets[next]);
+        set_probe(volume_, i, f.coefficients.data() + next * n, maps[next], offsets[next]);
         ++next;
       } else if (next_off < f.deactivated.size() && f.deactivated[next_off] == i) {
         deactivate_probe(volume_, i, (f.deactivated_flags[next_off] & kWireFlagInsideGeometry) != 0,
@@ -101,7 +114,7 @@ ApplyOutcome ProbeMirror::apply(const ProbeFrame& f, std::vector<std::uint32_t>&
     if (f.header.frame <= frame_) return ApplyOutcome::kOld;
     if (f.header.base_frame != frame_) return ApplyOutcome::kGap;
     for (std::size_t k = 0; k < f.updated.size(); ++k)
-      set_probe(volume_, f.updated[k], f.coefficients.data() + k * n, f.moments.data() + k * texels, offsets[k]);
+      set_probe(volume_, f.updated[k], f.coefficients.data() + k * n, maps[k], offsets[k]);
     for (std::size_t k = 0; k < f.deactivated.size(); ++k)
       deactivate_probe(volume_, f.deactivated[k], (f.deactivated_flags[k] & kWireFlagInsideGeometry) != 0,
                        deactivated_offsets[k]);

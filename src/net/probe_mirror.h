@@ -37,9 +37,10 @@ class ProbeMirror {
 
   // Applies a decoded frame (nothing of it unless it is applied whole); `changed` receives the
   // probes whose coefficients, moments, offsets or flags it set (increasing), for the
-  // renderer's upload. An updated probe takes its coefficients, its moment map and its offset
-  // (zero unless the frame lists it relocated); a deactivated one is zeroed, its moments reset
-  // and its offset zero, with the frame's inside-geometry flag.
+  // renderer's upload. An updated probe takes its coefficients, its offset (zero unless the
+  // frame lists it relocated) and, when the frame lists it mapped, its moment map (otherwise it
+  // keeps the map it holds; a keyframe maps all its probes, decode_frame checks); a deactivated
+  // one is zeroed, its moments reset and its offset zero, with the frame's inside-geometry flag.
   ApplyOutcome apply(const ProbeFrame& frame, std::vector<std::uint32_t>& changed);
 
   // Whether a keyframe has been applied, and the server frame held (valid once synced).

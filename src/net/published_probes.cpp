@@ -12,7 +12,7 @@ PublishedProbes::PublishedProbes(const probes::ProbeVolume& volume, std::uint64_
     : options_(options),
       coefficient_count_(volume.coefficient_count()),
       sh_bytes_(std::size_t(probe_bytes(options.encoding, volume.sh_order()))),
-      record_bytes_(sh_bytes_ + moment_bytes(volume.moment_texels())),
+      map_bytes_(moment_bytes(volume.moment_texels())),
       texels_(std::size_t(volume.moment_texels())) {
   const probes::ProbeGrid& grid = volume.grid();
   const int sh_order = volume.sh_order();
@@ -34,7 +34,8 @@ PublishedProbes::PublishedProbes(const probes::ProbeVolume& volume, std::uint64_
       throw std::invalid_argument("PublishedProbes: probes must be increasing grid indices");
   probes_ = std::move(probes);
   held_.assign(probes_.size(), 0);
-  held_bytes_.assign(probes_.size() * record_bytes_, 0);
+  held_coefficients_.assign(probes_.size() * sh_bytes_, 0);
+  held_maps_.assign(probes_.size() * map_bytes_, 0);
   source_.assign(probes_.size() * std::size_t(coefficient_count_), glm::vec3(0.0f));
   source_moments_.assign(probes_.size() * texels_, glm::vec2(0.0f));
   held_offsets_.assign(probes_.size(), glm::vec3(0.0f));
@@ -56,8 +57,8 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
   if (frame <= header_.frame)
     throw std::invalid_argument("PublishedProbes::publish: frames must increase");
   PublishStats s;
-  std::vector<std::uint32_t> updated, deactivated, relocated;
-  std::vector<std::uint8_t> flags, bytes;
+  std::vector<std::uint32_t> updated, mapped, deactivated, relocated;
+  std::vector<std::uint8_t> flags, coefficients, maps;
   std::vector<glm::vec3> offsets;
   const std::size_t n = std::size_t(coefficient_count_);
   for (std::size_t k = 0; k < probes_.size(); ++k) {
@@ -88,6 +89,10 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
     const glm::vec3& offset = volume.offset(i);
     glm::vec3* src = source_.data() + k * n;
     glm::vec2* src_moments = source_moments_.data() + k * texels_;
+    // A probe held at the same offset goes again when its coefficients moved beyond the bound,
+    // with its map only when that moved beyond the threshold since the map last sent; any
+    // other (first sent, back from inactive, relocated) goes whole.
+    bool send_coefficients = true, send_map = texels_ > 0;
     if (held_[k] && offset == held_offsets_[k]) {
       float change = 0.0f;
       for (std::size_t j = 0; j < n; ++j) {
@@ -101,23 +106,30 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
       }
       const float l0 = std::max({std::fabs(now[0].x), std::fabs(now[0].y), std::fabs(now[0].z)});
       const float allowed = std::max(options_.threshold * l0, options_.floor);
-      if (change <= allowed && moment_change <= options_.threshold) {
+      send_map = moment_change > options_.threshold;
+      send_coefficients = send_map || change > allowed;
+      if (!send_coefficients) {
         if (change > 0.0f || moment_change > 0.0f) ++s.held_back;
         continue;
       }
     }
-    std::uint8_t* out = held_bytes_.data() + k * record_bytes_;
+    std::uint8_t* out = held_coefficients_.data() + k * sh_bytes_;
     bool exact = encode_probe(header_.encoding, header_.sh_order, now, std::span(out, sh_bytes_));
-    exact &= encode_moments(moments_now, std::span(out + sh_bytes_, record_bytes_ - sh_bytes_));
-    if (!exact) ++s.saturated;
     std::copy(now.begin(), now.end(), src);
-    std::copy(moments_now.begin(), moments_now.end(), src_moments);
+    updated.push_back(i);
+    coefficients.insert(coefficients.end(), out, out + sh_bytes_);
+    if (send_map) {
+      std::uint8_t* map = held_maps_.data() + k * map_bytes_;
+      exact &= encode_moments(moments_now, std::span(map, map_bytes_));
+      std::copy(moments_now.begin(), moments_now.end(), src_moments);
+      mapped.push_back(i);
+      maps.insert(maps.end(), map, map + map_bytes_);
+    }
+    if (!exact) ++s.saturated;
     held_offsets_[k] = offset;
     held_[k] = 1;
     announced_[k] = kWireFlagInactive;  // what an unlisted probe is, should it go again
     announced_offsets_[k] = glm::vec3(0.0f);
-    updated.push_back(i);
-    bytes.insert(bytes.end(), out, out + record_bytes_);
     if (offset != glm::vec3(0.0f)) {
       relocated.push_back(i);
       offsets.push_back(offset);
@@ -130,11 +142,13 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
   h.server_time_us = server_time_us;
   h.scene_time = scene_time;
   std::vector<std::uint8_t> message = encode_frame(
-      h, FrameParts{updated, bytes, deactivated, flags, relocated, offsets}, options_.zstd_level);
+      h, FrameParts{updated, coefficients, mapped, maps, deactivated, flags, relocated, offsets},
+      options_.zstd_level);
   header_.frame = frame;
   header_.server_time_us = server_time_us;
   header_.scene_time = scene_time;
   s.sent = std::uint32_t(updated.size());
+  s.maps = std::uint32_t(mapped.size());
   s.deactivated = std::uint32_t(deactivated.size());
   s.bytes = message.size();
   if (stats) *stats = s;
@@ -150,8 +164,8 @@ std::vector<std::uint8_t> PublishedProbes::description() const {
 }
 
 std::vector<std::uint8_t> PublishedProbes::snapshot() const {
-  std::vector<std::uint32_t> updated, relocated, deactivated;
-  std::vector<std::uint8_t> bytes, flags;
+  std::vector<std::uint32_t> updated, mapped, relocated, deactivated;
+  std::vector<std::uint8_t> coefficients, maps, flags;
   std::vector<glm::vec3> offsets;
   for (std::size_t k = 0; k < held_.size(); ++k) {
     if (!held_[k]) {
@@ -165,9 +179,16 @@ std::vector<std::uint8_t> PublishedProbes::snapshot() const {
       }
       continue;
     }
+    // Every held probe with the map subscribers hold of it: a keyframe leaves nothing to an
+    // earlier frame.
     updated.push_back(probes_[k]);
-    const std::uint8_t* b = held_bytes_.data() + k * record_bytes_;
-    bytes.insert(bytes.end(), b, b + record_bytes_);
+    const std::uint8_t* c = held_coefficients_.data() + k * sh_bytes_;
+    coefficients.insert(coefficients.end(), c, c + sh_bytes_);
+    if (map_bytes_ > 0) {
+      mapped.push_back(probes_[k]);
+      const std::uint8_t* m = held_maps_.data() + k * map_bytes_;
+      maps.insert(maps.end(), m, m + map_bytes_);
+    }
     if (held_offsets_[k] != glm::vec3(0.0f)) {
       relocated.push_back(probes_[k]);
       offsets.push_back(held_offsets_[k]);
@@ -176,7 +197,7 @@ std::vector<std::uint8_t> PublishedProbes::snapshot() const {
   FrameHeader h = header_;
   h.kind = FrameKind::kKeyframe;
   h.base_frame = h.frame;
-  return encode_frame(h, FrameParts{updated, bytes, deactivated, flags, relocated, offsets},
+  return encode_frame(h, FrameParts{updated, coefficients, mapped, maps, deactivated, flags, relocated, offsets},
                       options_.zstd_level);
 }
 

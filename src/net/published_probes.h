@@ -7,10 +7,14 @@
 // is not traced is never re-sent for its own rounding). A subscriber's probe therefore differs
 // from the server's by at most that amount plus the encoding's error (probe_encoding.h).
 // threshold 0 and floor 0: every probe whose coefficients changed at all is sent. With distance
-// moments (a volume of moment resolution R > 0), a probe is also re-sent when a moment texel
-// moved by more than `threshold` (the moments are fractions of the range, so the same number
-// reads as a fraction of it), and whenever its relocation offset changed: a sent probe always
-// carries its whole record (coefficients, moments, offset).
+// moments (a volume of moment resolution R > 0), a probe's moment map is sent when a texel moved
+// by more than `threshold` since the map last sent (the moments are fractions of the range, so
+// the same number reads as a fraction of it), when the probe is sent for the first time since it
+// was inactive, and when its relocation offset changed; a probe sent with its map is sent with
+// its coefficients and offset too, one re-sent for its coefficients alone carries no map (the
+// subscribers keep the one they hold, within the threshold of the server's). Moment maps are
+// running averages of first-hit distances that settle long before the coefficients stop
+// moving, so most probes of a tick travel without theirs (docs/protocol.md has the figures).
 //
 // A stream may carry a subset of the grid's probes (a brick, bricks.h): then its frames list
 // only those, and its keyframes say nothing of the others.
@@ -43,6 +47,7 @@ struct StreamOptions {
 
 struct PublishStats {
   std::uint32_t sent = 0;         // probes with coefficients in the delta
+  std::uint32_t maps = 0;         // ... of which with their moment map
   std::uint32_t deactivated = 0;  // probes announced inactive
   std::uint32_t held_back = 0;    // changed, but within the threshold
   std::uint32_t saturated = 0;    // probes the encoding could not represent exactly
@@ -83,14 +88,15 @@ class PublishedProbes {
   StreamOptions options_;
   int coefficient_count_;
   std::size_t sh_bytes_;
-  std::size_t record_bytes_;
+  std::size_t map_bytes_;
   std::size_t texels_;
   std::uint32_t grid_probes_ = 0;
   std::vector<std::uint32_t> probes_;     // the probes carried (grid indices, increasing)
   std::vector<std::uint8_t> held_;        // per probe: 1 while subscribers hold it
-  std::vector<std::uint8_t> held_bytes_;  // per probe: the record last sent
+  std::vector<std::uint8_t> held_coefficients_;  // per probe: the coefficients' bytes last sent
+  std::vector<std::uint8_t> held_maps_;   // per probe: the moment map's bytes last sent
   std::vector<glm::vec3> source_;         // per probe: the coefficients they were sent from
-  std::vector<glm::vec2> source_moments_; // per probe: the moments they were sent from
+  std::vector<glm::vec2> source_moments_; // per probe: the moments its map was sent from
   std::vector<glm::vec3> held_offsets_;   // per probe: the offset last sent
   std::vector<std::uint8_t> announced_;   // per probe not held: the flags subscribers hold
   std::vector<glm::vec3> announced_offsets_;  // ... and the offset

@@ -55,8 +55,9 @@ class ServeView : public cli::TempDirTest {
 };
 
 // The view renders what `ddish render` renders after the same 3 updates with the same seed,
-// visibility included: every sent probe carries its distance moments (fp16, the halves the
-// renderer uploads) and its relocation offset (f32), so with fp16 coefficients the images are
+// visibility included: every sent probe carries its relocation offset (f32) and, at
+// --delta-threshold 0, its distance-moment map whenever any texel of it moved at all (fp16, the
+// halves the renderer uploads; the view's snapshot holds every map sent), so with fp16 coefficients the images are
 // identical; the compact encoding's coefficient error (about 1% of L0 in the high bands) costs
 // 58.6 dB here (measured; 57.9 dB on net_figures' 8x8x8 Cornell box), asserted >= 55 dB. A
 // server without moments (--probe-visibility 0) makes the view size its volume without them

@@ -1,11 +1,12 @@
 // libFuzzer target for the probe stream's decoder (net/probe_frame.h): any byte string is either
 // rejected with a reason or decodes to a frame whose every field is in range (indices, finite
-// coefficients, moments in [0, 1], finite non-zero offsets of updated or deactivated probes); a decoded frame
-// re-encodes to a message that decodes to the same indices, moments and offsets, and applies to
-// a mirror of its grid and moment resolution, or is refused there for an offset beyond
-// kMaxRelocation cells. Seeds: tests/fuzz/corpus/probe_frame/ (keyframes and deltas in every
-// encoding, with zstd, L1 without moments, L2 and L4 with 2x2 and 4x4 moment maps and relocated
-// probes, and one version-1 frame).
+// coefficients, moment maps of updated probes only, of all of a keyframe's, moments in [0, 1],
+// finite non-zero offsets of updated or deactivated probes); a decoded frame re-encodes to a
+// message that decodes to the same indices, moments and offsets, and applies to a mirror of its
+// grid and moment resolution, which then holds the frame's maps, or is refused there for an
+// offset beyond kMaxRelocation cells. Seeds: tests/fuzz/corpus/probe_frame/ (keyframes and
+// deltas in every encoding, with zstd, L1 without moments, L2 and L4 with 2x2 and 4x4 moment
+// maps, deltas mapping some of their probes, relocated probes, and one version-1 frame).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -38,7 +39,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(f.deactivated[k] < probes && (k == 0 || f.deactivated[k] > f.deactivated[k - 1]));
   for (const glm::vec3& v : f.coefficients)
     require(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z));
-  require(f.moments.size() == f.updated.size() * std::size_t(f.header.moment_texels()));
+  require(f.moments.size() == f.mapped.size() * std::size_t(f.header.moment_texels()));
+  require(f.mapped.size() <= f.updated.size() && (f.header.moment_resolution > 0 || f.mapped.empty()));
+  require(f.header.kind == net::FrameKind::kDelta || f.header.moment_resolution == 0 || f.mapped == f.updated);
+  for (std::size_t k = 0, a = 0; k < f.mapped.size(); ++k) {
+    require(k == 0 || f.mapped[k] > f.mapped[k - 1]);
+    while (a < f.updated.size() && f.updated[a] < f.mapped[k]) ++a;
+    require(a < f.updated.size() && f.updated[a] == f.mapped[k]);
+  }
   for (const glm::vec2& m : f.moments) require(m.x >= 0.0f && m.x <= 1.0f && m.y >= 0.0f && m.y <= 1.0f);
   require(f.relocated.size() == f.offsets.size() &&
           f.relocated.size() <= f.updated.size() + f.deactivated.size());
@@ -46,7 +54,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     require(std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z) && o != glm::vec3(0.0f));
   const net::DecodeResult again = net::decode_frame(net::encode_frame(f), limits);
   require(again.ok && again.frame.updated == f.updated && again.frame.deactivated == f.deactivated &&
-          again.frame.moments == f.moments && again.frame.relocated == f.relocated &&
+          again.frame.mapped == f.mapped && again.frame.moments == f.moments && again.frame.relocated == f.relocated &&
           again.frame.offsets == f.offsets);
   if (probes <= 4096) {
     probes::ProbeVolume volume(
@@ -69,9 +77,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const glm::vec3& o : frame.offsets) beyond |= glm::any(glm::greaterThan(glm::abs(o), bound));
     require(mirror.apply(frame, changed) ==
             (beyond ? net::ApplyOutcome::kBadOffset : net::ApplyOutcome::kApplied));
-    if (!beyond)
+    if (!beyond) {
       for (std::size_t k = 0; k < frame.relocated.size(); ++k)
         require(volume.offset(frame.relocated[k]) == frame.offsets[k]);
+      const std::size_t texels = std::size_t(frame.header.moment_texels());
+      for (std::size_t k = 0; k < frame.mapped.size(); ++k)
+        for (std::size_t t = 0; t < texels; ++t)
+          require(volume.moments(frame.mapped[k])[t] == frame.moments[k * texels + t]);
+    }
   }
   return 0;
 }

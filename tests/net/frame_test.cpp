@@ -1,6 +1,6 @@
 // Probe frames: round trips of keyframes and deltas (every encoding, with and without zstd, with
-// distance moments and relocation offsets), and every rejection kind of the decoder on hand-made
-// bad messages.
+// distance moments, a delta's for some of its probes only, and relocation offsets), and every
+// rejection kind of the decoder on hand-made bad messages.
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -46,8 +46,10 @@ ProbeFrame sample_frame(Encoding encoding, bool zstd, FrameKind kind = FrameKind
   if (visibility) {
     f.header.moment_resolution = kSampleMoments;
     f.header.moment_range = 2.5f;
+    // A keyframe maps every probe it carries; this delta 3 of its 7 (the others' maps settled).
+    f.mapped = kind == FrameKind::kKeyframe ? f.updated : std::vector<std::uint32_t>{1, 7, 23};
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    for (std::size_t k = 0; k < f.updated.size() * kSampleMoments * kSampleMoments; ++k) {
+    for (std::size_t k = 0; k < f.mapped.size() * kSampleMoments * kSampleMoments; ++k) {
       const float m = u(rng);
       f.moments.emplace_back(m, m * m + 0.1f * u(rng) * (1.0f - m * m));  // mean d^2 >= (mean d)^2
     }
@@ -79,6 +81,7 @@ TEST(Frame, RoundTripEveryEncodingAndCompression) {
         EXPECT_EQ(h.scene_time, f.header.scene_time);
         EXPECT_EQ(h.probe_count(), 24u);
         EXPECT_EQ(r.frame.updated, f.updated);
+        EXPECT_EQ(r.frame.mapped, f.mapped);
         EXPECT_EQ(r.frame.deactivated, f.deactivated);
         EXPECT_EQ(r.frame.deactivated_flags, f.deactivated_flags);
         ASSERT_EQ(r.frame.coefficients.size(), f.coefficients.size());
@@ -99,9 +102,12 @@ TEST(Frame, RoundTripEveryEncodingAndCompression) {
         EXPECT_EQ(r.frame.moments[4], glm::vec2(0.0f));
         EXPECT_EQ(r.frame.relocated, f.relocated);
         EXPECT_EQ(r.frame.offsets, f.offsets);  // exact: the f32 the rasterizer uploads
-        if (!zstd) {  // 96 header + 7 + 2 + 2 index bytes + 2 flags + records + offsets
-          EXPECT_EQ(bytes.size(), kFrameHeaderBytes + (kind == FrameKind::kDelta ? 13u : 9u) +
-                                      7u * (std::size_t(probe_bytes(Encoding(e), 2)) + 4 * 9) + 2 * 12);
+        if (!zstd) {  // 100 header + 7 + 2 + 2 + 3 index bytes + 2 flags (delta), or 7 + 2 + 7
+                      // (keyframe), + coefficients + maps + offsets
+          const std::size_t maps = kind == FrameKind::kDelta ? 3 : 7;
+          ASSERT_EQ(f.mapped.size(), maps);
+          EXPECT_EQ(bytes.size(), kFrameHeaderBytes + 16u +
+                                      7u * std::size_t(probe_bytes(Encoding(e), 2)) + maps * 4 * 9 + 2 * 12);
         }
       }
 }
@@ -142,7 +148,7 @@ void expect_reject(const std::vector<std::uint8_t>& m, RejectKind kind) {
 
 TEST(FrameReject, Truncated) {
   std::vector<std::uint8_t> m = good_message();
-  expect_reject({m.begin(), m.begin() + 95}, RejectKind::kTruncated);
+  expect_reject({m.begin(), m.begin() + std::ptrdiff_t(kFrameHeaderBytes - 1)}, RejectKind::kTruncated);
   expect_reject({}, RejectKind::kTruncated);
   for (std::size_t cut = kFrameHeaderBytes; cut < m.size(); cut += 7)
     expect_reject({m.begin(), m.begin() + std::ptrdiff_t(cut)}, RejectKind::kTruncated);
@@ -220,7 +226,16 @@ TEST(FrameReject, SizeMismatch) {
   m[10] = kSampleMoments + 1;  // moment maps larger than the records
   expect_reject(m, RejectKind::kSizeMismatch);
   m = good_message();
-  put32(m, 92, 5000);  // uncompressed size unlike the payload's
+  put32(m, 88, 8);  // more mapped probes than updated ones
+  expect_reject(m, RejectKind::kSizeMismatch);
+  m = good_message();
+  put32(m, 88, 4);  // one moment map more than the payload carries
+  expect_reject(m, RejectKind::kSizeMismatch);
+  m = encode_frame(sample_frame(Encoding::kHalf, false, FrameKind::kDelta, false));
+  put32(m, 88, 1);  // a moment map in a stream without moments
+  expect_reject(m, RejectKind::kSizeMismatch);
+  m = good_message();
+  put32(m, 96, 5000);  // uncompressed size unlike the payload's
   expect_reject(m, RejectKind::kSizeMismatch);
   DecodeLimits tight;
   tight.max_payload_bytes = 100;
@@ -254,16 +269,17 @@ TEST(FrameReject, BadCoefficients) {
   expect_reject(encode_frame(f), RejectKind::kBadCoefficients);
 }
 
-// Moments outside [0, 1] or not numbers, offsets that are not finite or zero or of a probe that
-// is not updated: "bad-visibility", with the probe named.
+// Moments outside [0, 1] or not numbers, a moment map of a probe that is not updated, a keyframe
+// without the maps of all its probes, offsets that are not finite or zero or of a probe that is
+// not updated: "bad-visibility", with the probe named.
 TEST(FrameReject, BadVisibility) {
-  const std::size_t record = std::size_t(probe_bytes(Encoding::kHalf, 2)) + 4 * 9;
-  // The payload after the index lists and flags: 7 + 2 + 2 index bytes, 2 flag bytes.
-  const std::size_t records_at = kFrameHeaderBytes + 13;
-  const std::size_t first_moment = records_at + std::size_t(probe_bytes(Encoding::kHalf, 2));
+  const std::size_t map = 4 * 9;
+  // The payload after the index lists and flags (7 + 2 + 2 + 3 index bytes, 2 flag bytes) and
+  // the 7 probes' coefficients: the 3 maps.
+  const std::size_t first_moment = kFrameHeaderBytes + 16 + 7 * std::size_t(probe_bytes(Encoding::kHalf, 2));
   for (std::uint16_t half : {std::uint16_t(0x3c01), std::uint16_t(0x4000), std::uint16_t(0x8001),
                              std::uint16_t(0x7c00), std::uint16_t(0x7e00)}) {  // >1, 2, <0, Inf, NaN
-    for (std::size_t at : {first_moment, first_moment + 2 * 9 + 4, records_at + 6 * record + record - 2}) {
+    for (std::size_t at : {first_moment, first_moment + 2 * 9 + 4, first_moment + 3 * map - 2}) {
       std::vector<std::uint8_t> m = good_message();
       m[at] = std::uint8_t(half), m[at + 1] = std::uint8_t(half >> 8);
       const DecodeResult r = decode_frame(m);
@@ -286,6 +302,22 @@ TEST(FrameReject, BadVisibility) {
   EXPECT_EQ(r.detail, "probe 22 has an offset but is neither updated nor deactivated");
   f.relocated = {7, 21};  // a deactivated probe's offset: the shader weighs inactive probes too
   EXPECT_TRUE(decode_frame(encode_frame(f)).ok);
+  f = sample_frame(Encoding::kHalf, false);
+  f.mapped = {1, 3, 23};  // 3 is deactivated: a map travels only with coefficients
+  const DecodeResult unmapped = decode_frame(encode_frame(f));
+  EXPECT_EQ(unmapped.reject, RejectKind::kBadVisibility);
+  EXPECT_EQ(unmapped.detail, "probe 3 has a moment map but is not updated");
+  // A keyframe replaces the client's whole state: one without a map of each of its probes
+  // would leave a probe with another frame's (or no) visibility.
+  f = sample_frame(Encoding::kHalf, false, FrameKind::kKeyframe);
+  f.mapped = {0, 1, 2, 7, 8, 20};  // 23's map missing
+  f.moments.resize(f.mapped.size() * 9);
+  const DecodeResult incomplete = decode_frame(encode_frame(f));
+  EXPECT_EQ(incomplete.reject, RejectKind::kBadVisibility);
+  EXPECT_EQ(incomplete.detail, "a keyframe with 6 moment maps for its 7 probes");
+  f.mapped.clear();
+  f.moments.clear();
+  EXPECT_EQ(decode_frame(encode_frame(f)).reject, RejectKind::kBadVisibility);
 }
 
 TEST(FrameReject, Decompression) {

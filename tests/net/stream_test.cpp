@@ -276,6 +276,7 @@ TEST(Stream, MomentsOffsetsAndStatesReachEveryClient) {
   PublishStats stats;
   const auto delta = pub.publish(server, 2, 0, 0.0, &stats);
   EXPECT_EQ(stats.sent, 2u);
+  EXPECT_EQ(stats.maps, 2u);  // 17's moved, 40 relocated
   EXPECT_EQ(stats.held_back, 1u);
   EXPECT_EQ(stats.deactivated, 1u);
   ASSERT_EQ(mirror.apply(decode_ok(delta).frame, changed), ApplyOutcome::kApplied);
@@ -287,8 +288,79 @@ TEST(Stream, MomentsOffsetsAndStatesReachEveryClient) {
   ProbeMirror late_mirror(late, kScene);
   ASSERT_EQ(late_mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
   expect_same_visibility(late, server);
-  // Bytes: a compact L2 record is 28 + 4 x 16 = 92 bytes, an offset 12 more.
-  EXPECT_EQ(delta.size(), kFrameHeaderBytes + 2 + 1 + 1 + 1 + 2 * 92 + 12);
+  // Bytes: 2 + 1 + 1 + 2 index bytes, a flag, compact L2 coefficients of 28 bytes and 4x4 maps
+  // of 4 x 16 = 64 per probe, an offset of 12.
+  EXPECT_EQ(delta.size(), kFrameHeaderBytes + 2 + 1 + 1 + 2 + 1 + 2 * (28 + 64) + 12);
+}
+
+void expect_same_probes(const probes::ProbeVolume& a, const probes::ProbeVolume& b) {
+  for (std::uint32_t i = 0; i < a.probe_count(); ++i) {
+    EXPECT_EQ(a.state(i).active(), b.state(i).active()) << i;
+    for (std::size_t j = 0; j < a.coefficients(i).size(); ++j) EXPECT_EQ(a.coefficients(i)[j], b.coefficients(i)[j]) << i;
+    for (std::size_t t = 0; t < a.moments(i).size(); ++t) EXPECT_EQ(a.moments(i)[t], b.moments(i)[t]) << i << " " << t;
+    EXPECT_EQ(a.offset(i), b.offset(i)) << i;
+  }
+}
+
+// A probe re-sent for its coefficients alone carries no moment map, and the client keeps the
+// map it holds; a map that moved beyond the threshold since the one last sent travels (with its
+// probe's coefficients, whether they moved or not), as does the map of a probe back from
+// inactive; a late joiner's keyframe holds every map everyone holds.
+TEST(Stream, MomentMapsTravelOnlyWhenTheyMove) {
+  std::mt19937_64 rng(10);
+  probes::ProbeVolume server = visibility_volume(rng);
+  PublishedProbes pub(server, kScene, 1, {.encoding = Encoding::kCompact, .threshold = 0.01f});
+  probes::ProbeVolume client(server.grid(), 2, 4);
+  ProbeMirror mirror(client, kScene);
+  std::vector<std::uint32_t> changed;
+  PublishStats stats;
+  pub.publish(server, 1, 0, 0.0, &stats);
+  EXPECT_EQ(stats.maps, stats.sent);  // first sent: every probe with its map
+  ASSERT_EQ(mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
+  const std::vector<glm::vec2> map20(client.moments(20).begin(), client.moments(20).end());
+  server.set_sh(20, test::radiance_probe(rng, 2, 1.0f));  // coefficients far beyond 1 %
+  server.moments(20)[5] += glm::vec2(0.005f, 0.0f);       // within the threshold: not sent
+  server.moments(21)[7] -= glm::vec2(0.0f, 0.05f);        // beyond it: sent
+  const auto delta = pub.publish(server, 2, 0, 0.0, &stats);
+  EXPECT_EQ(stats.sent, 2u);
+  EXPECT_EQ(stats.maps, 1u);
+  const DecodeResult r = decode_ok(delta);
+  EXPECT_EQ(r.frame.updated, (std::vector<std::uint32_t>{20, 21}));
+  EXPECT_EQ(r.frame.mapped, (std::vector<std::uint32_t>{21}));
+  EXPECT_EQ(delta.size(), kFrameHeaderBytes + 2 + 1 + 2 * 28 + 64);  // 2 + 1 index bytes
+  ASSERT_EQ(mirror.apply(r.frame, changed), ApplyOutcome::kApplied);
+  EXPECT_EQ(changed, (std::vector<std::uint32_t>{20, 21}));
+  for (std::size_t t = 0; t < map20.size(); ++t) EXPECT_EQ(client.moments(20)[t], map20[t]) << t;  // kept
+  EXPECT_NEAR(client.moments(21)[7].y, server.moments(21)[7].y, 0x1p-11f);
+  EXPECT_NEAR(client.coefficients(20)[0].x, server.coefficients(20)[0].x, 1e-2f * server.coefficients(20)[0].x);
+  // The threshold counts from the map last sent, not the last tick's: a slow drift of 0.004 per
+  // tick goes out on the third tick (0.012 > 0.01).
+  for (std::uint64_t frame = 3; frame <= 5; ++frame) {
+    server.moments(20)[5] += glm::vec2(frame == 3 ? -0.001f : 0.004f, 0.0f);  // 0.004, 0.008, 0.012
+    const DecodeResult drift = decode_ok(pub.publish(server, frame, 0, 0.0, &stats));
+    EXPECT_EQ(stats.maps, frame == 5 ? 1u : 0u) << frame;
+    ASSERT_EQ(mirror.apply(drift.frame, changed), ApplyOutcome::kApplied);
+  }
+  EXPECT_NEAR(client.moments(20)[5].x, server.moments(20)[5].x, 0x1p-11f);
+  // Back from inactive with the very map it had: sent whole (the client reset it).
+  const std::vector<glm::vec2> map30(server.moments(30).begin(), server.moments(30).end());
+  server.deactivate(30, false);
+  ASSERT_EQ(mirror.apply(decode_ok(pub.publish(server, 6, 0, 0.0)).frame, changed), ApplyOutcome::kApplied);
+  server.state(30).flags = 0;
+  server.state(30).updates = 1;
+  std::copy(map30.begin(), map30.end(), server.moments(30).begin());
+  const DecodeResult back = decode_ok(pub.publish(server, 7, 0, 0.0, &stats));
+  EXPECT_EQ(back.frame.mapped, (std::vector<std::uint32_t>{30}));
+  ASSERT_EQ(mirror.apply(back.frame, changed), ApplyOutcome::kApplied);
+  for (std::size_t t = 0; t < map30.size(); ++t)
+    EXPECT_EQ(sh::float_to_half(client.moments(30)[t].x), sh::float_to_half(map30[t].x)) << t;
+  // A late joiner holds exactly what the client that followed every delta holds.
+  probes::ProbeVolume late(server.grid(), 2, 4);
+  ProbeMirror late_mirror(late, kScene);
+  const DecodeResult snap = decode_ok(pub.snapshot());
+  EXPECT_EQ(snap.frame.mapped, snap.frame.updated);
+  ASSERT_EQ(late_mirror.apply(snap.frame, changed), ApplyOutcome::kApplied);
+  expect_same_probes(late, client);
 }
 
 TEST(Mirror, RefusesAnotherMomentMapAndOffsetsBeyondTheCell) {
