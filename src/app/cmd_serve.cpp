@@ -11,8 +11,9 @@
 // like a display's) within --budget-ms (or --client-budget-ms per connected client, so that each
 // client's views converge as fast as if it were alone: tests/probes/test_scheduler_clients.cpp),
 // runs the one probe update, and publishes the delta of
-// what changed (net/published_probes.h: --delta-threshold), each sent probe with its distance
-// moments (--probe-visibility, default 8 as render's) and relocation offset; between ticks it answers snapshot
+// what changed (net/published_probes.h: --delta-threshold), each sent probe with its relocation
+// offset and, when they moved past the same threshold, its distance moments (--probe-visibility,
+// default 8 as render's); between ticks it answers snapshot
 // requests and takes the clients' views. A client silent for --client-timeout-ms stops counting.
 // With no client it idles (publishes empty deltas as heartbeats, traces nothing); --frames N
 // instead makes N updates whatever the clients, then serves their result. --seconds S stops it
