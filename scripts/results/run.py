@@ -196,10 +196,20 @@ def headline(outcome):
                          "within its frames.")
     svc = outcome.get("probe service")
     if svc:
-        enc = {r["encoding"] + (" + zstd" if r["zstd"] == "yes" else ""): r for r in svc["service_encodings.csv"]}
-        if "compact" in enc:
-            lines.append(f"- Probe stream: {enc['compact']['bytes_per_probe']} B per L2 probe (compact "
-                         f"encoding), PSNR {enc['compact']['psnr_vs_in_process_db']} dB against the "
+        # serve's default streams 8x8 moment maps; the rows without maps (--probe-visibility 0)
+        # are the figure to compare with reports from before protocol version 2.
+        enc = {(r["encoding"] + (" + zstd" if r["zstd"] == "yes" else ""), r.get("moment_maps", "none")): r
+               for r in svc["service_encodings.csv"]}
+        with_maps, without = enc.get(("compact", "8x8")), enc.get(("compact", "none"))
+        if with_maps:
+            lines.append(f"- Probe stream (`serve` defaults, 8×8 moment maps): {with_maps['bytes_per_probe']} B "
+                         f"per L2 probe in the first update (compact encoding), PSNR "
+                         f"{with_maps['psnr_vs_in_process_db']} dB against the in-process render of the same "
+                         "probes" + (f"; without moment maps {without['bytes_per_probe']} B, "
+                                     f"{without['psnr_vs_in_process_db']} dB." if without else "."))
+        elif without:
+            lines.append(f"- Probe stream: {without['bytes_per_probe']} B per L2 probe (compact "
+                         f"encoding), PSNR {without['psnr_vs_in_process_db']} dB against the "
                          "in-process render of the same probes.")
         rec = svc["service_reconnect.csv"]
         if rec:
