@@ -11,6 +11,12 @@
 // (trace::EmbreeScene: per-mesh BVHs under an instance level, alpha-test filters): what the
 // update would cost if shading were free.
 //
+// Which floor the share is of: the first replay's scene has Embree's default settings
+// (RTC_SCENE_FLAG_NONE, so not robust; RTC_BUILD_QUALITY_MEDIUM). The tracer's own scene is
+// RTC_SCENE_FLAG_ROBUST (the watertight test leaks without it) and RTC_BUILD_QUALITY_HIGH, with
+// filter callbacks on alpha-tested materials; its replay (the scene_floor_* columns) is the
+// floor the update could reach with free shading. update_share_of_floor* is of the first.
+//
 //   trace_floor SCENE [--grid X,Y,Z] [--samples N] [--bounces N] [--updates K] [--repeat R]
 //                     [--threads T] [--stream G1,G2,...]
 //
@@ -98,7 +104,8 @@ RTCRay to_rtc_ray(const trace::RecordedRay& r) {
 }
 
 // One flat Embree scene of every instance's triangles in world space: the cheapest closest-hit
-// structure Embree offers for these rays (no instancing level, no filter callbacks).
+// structure Embree offers for these rays (no instancing level, no filter callbacks; Embree's
+// default scene flags and build quality: not robust, MEDIUM).
 class FlatScene {
  public:
   explicit FlatScene(const scene::Scene& s) {
