@@ -31,7 +31,7 @@ for run in fp16:8 shared-exponent:8 compact:8 fp16:0 compact:0; do
   enc=${run%:*} vis=${run#*:}
   for z in "" "--zstd"; do
     "$B/ddish" serve $S $PROBES --probe-visibility $vis --bind tcp://127.0.0.1:$port --frames 5 --seconds 30 \
-      --encoding $enc $z --delta-threshold 0 --timings "$D/serve.json" >"$D/serve.log" 2>&1 &
+      --encoding $enc $z --delta-threshold 0 --moment-threshold 0 --timings "$D/serve.json" >"$D/serve.log" 2>&1 &
     pid=$!
     wait_for "$D/serve.log" "update 5:"
     "$B/ddish" view $S --grid 8,8,8 $IMAGE --connect tcp://127.0.0.1:$port --out "$D/view" >/dev/null 2>&1

@@ -88,6 +88,7 @@ struct ServeArgs {
   bool zstd = false;
   float threshold = 0.01f;
   float floor = 0.0f;
+  float moment_threshold = 0.01f;
   int client_timeout_ms = 2000;
   double client_budget_ms = 0.0;  // > 0: the tick's budget is this x the connected clients
   std::string timings;
@@ -104,8 +105,8 @@ void check(const ServeArgs& a) {
   if (a.frames < 0 || a.seconds < 0.0) throw std::invalid_argument("--frames and --seconds must be >= 0");
   if (!net::parse_encoding(a.encoding))
     throw std::invalid_argument("--encoding must be fp16, shared-exponent or compact, got '" + a.encoding + "'");
-  if (!(a.threshold >= 0.0f) || !(a.floor >= 0.0f))
-    throw std::invalid_argument("--delta-threshold and --delta-floor must be >= 0");
+  if (!(a.threshold >= 0.0f) || !(a.floor >= 0.0f) || !(a.moment_threshold >= 0.0f))
+    throw std::invalid_argument("--delta-threshold, --delta-floor and --moment-threshold must be >= 0");
   if (a.client_timeout_ms < 1) throw std::invalid_argument("--client-timeout-ms must be >= 1");
   if (!(a.client_budget_ms >= 0.0) || !std::isfinite(a.client_budget_ms))
     throw std::invalid_argument("--client-budget-ms must be a finite number >= 0");
@@ -145,6 +146,7 @@ void write_timings(const std::string& path, const std::vector<TickRecord>& ticks
                     {"budget_ms", t.budget_ms},
                     {"probes_traced", t.traced},
                     {"probes_sent", t.published.sent},
+                    {"maps_sent", t.published.maps},
                     {"probes_deactivated", t.published.deactivated},
                     {"probes_held_back", t.published.held_back},
                     {"probes_saturated", t.published.saturated},
@@ -202,6 +204,7 @@ int run_serve(const ServeArgs& a) {
   so.zstd = a.zstd;
   so.threshold = a.threshold;
   so.floor = a.floor;
+  so.moment_threshold = a.moment_threshold;
   // The bricks of this server's share: one stream each. The others' probes are inactive here,
   // so the scheduler never plans them.
   const net::BrickShare share = net::parse_brick_share(a.bricks);
@@ -236,14 +239,14 @@ int run_serve(const ServeArgs& a) {
   const auto& g = placement.grid;
   std::fprintf(stderr,
                "serve: %s on %s (requests %s), scene identity %016llx, stream %016llx; probes %dx%dx%d "
-               "(%s), L%d, visibility %s, %s%s, delta threshold %g (floor %g); bricks %s: %zu of %u; %s\n",
+               "(%s), L%d, visibility %s, %s%s, delta threshold %g (floor %g), moment threshold %g; bricks %s: %zu of %u; %s\n",
                s.path.c_str(), endpoint.publisher().c_str(), endpoint.requests().c_str(),
                static_cast<unsigned long long>(identity), static_cast<unsigned long long>(stream),
                g.counts().x, g.counts().y, g.counts().z, placement.how.c_str(), a.probe.sh_order,
                volume.has_moments() ? fmt::format("{0}x{0} moments over {1:g} m", volume.moment_resolution(),
                                                   volume.moment_range()).c_str()
                                     : "off",
-               a.encoding.c_str(), a.zstd ? " + zstd" : "", a.threshold, a.floor, a.bricks.c_str(),
+               a.encoding.c_str(), a.zstd ? " + zstd" : "", a.threshold, a.floor, a.moment_threshold, a.bricks.c_str(),
                owned.size(), layout.brick_count(),
                a.frames > 0 ? fmt::format("{} updates, then serving them", a.frames).c_str()
                             : "updating while clients are connected");
@@ -295,6 +298,7 @@ int run_serve(const ServeArgs& a) {
       net::PublishStats stats;
       server.publish(owned[k], published[k].publish(volume, tick, last_update_end_us, scene_time, &stats));
       rec.published.sent += stats.sent;
+      rec.published.maps += stats.maps;
       rec.published.deactivated += stats.deactivated;
       rec.published.held_back += stats.held_back;
       rec.published.saturated += stats.saturated;
@@ -342,8 +346,11 @@ Action make_serve(CLI::App& root) {
   cmd->add_option("--encoding", a->encoding, "coefficient encoding: fp16, shared-exponent or compact (distance moments travel as fp16 whatever it is)")->capture_default_str();
   cmd->add_flag("--zstd", a->zstd, "compress every frame's payload with zstd");
   cmd->add_option("--delta-threshold", a->threshold,
-                  "re-send a probe when a coefficient moved more than this fraction of its largest L0, or a "
-                  "distance moment more than this fraction of the moment range")
+                  "re-send a probe when a coefficient moved more than this fraction of its largest L0")
+      ->capture_default_str();
+  cmd->add_option("--moment-threshold", a->moment_threshold,
+                  "re-send a probe with its distance-moment map when the map's texels moved more than this "
+                  "fraction of the moment range, root mean square over the map (mean distance and spread)")
       ->capture_default_str();
   cmd->add_option("--delta-floor", a->floor, "... or more than this absolute amount, whichever is larger")
       ->capture_default_str();

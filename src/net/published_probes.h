@@ -30,6 +30,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "net/probe_frame.h"
@@ -43,7 +44,16 @@ struct StreamOptions {
   int zstd_level = 3;
   float threshold = 0.0f;  // relative to the probe's largest L0 channel
   float floor = 0.0f;      // absolute, in the coefficients' units
+  // A probe's moment map goes again when moment_map_change (below) since the map last sent
+  // exceeds this (a fraction of the moment range).
+  float moment_threshold = 0.0f;
 };
+
+// How far apart two moment maps of one probe are for the Chebyshev test: the root mean square,
+// over the texels, of the change of the mean distance mu = m1 and of the spread
+// sigma = sqrt(m2 - m1^2), both fractions of the moment range. Zero only for maps whose
+// texels all hold the same (mu, sigma).
+float moment_map_change(std::span<const glm::vec2> a, std::span<const glm::vec2> b);
 
 struct PublishStats {
   std::uint32_t sent = 0;         // probes with coefficients in the delta

@@ -74,7 +74,7 @@ TEST_F(ServeView, ViewEqualsInProcessRender) {
     const std::string bind = address(test++);
     const std::string name = std::string(encoding) + "_" + visibility;
     Process server(serve_args(bind, {"--frames", "3", "--seconds", "20", "--encoding", encoding,
-                                     "--delta-threshold", "0", "--probe-relocation", "--probe-visibility", visibility}),
+                                     "--delta-threshold", "0", "--moment-threshold", "0", "--probe-relocation", "--probe-visibility", visibility}),
                    dir_ / ("serve_" + name));
     ASSERT_TRUE(wait_for(dir_ / ("serve_" + name), "update 3:", 15.0));
     const std::string out = (dir_ / name).string();
@@ -106,7 +106,7 @@ TEST_F(ServeView, ServerTracesUnderItsSky) {
                   " --frames 3 --warmup-ms 0 " +
                   (which == "bright" ? sky : "") + " --out " + quote((dir_ / which).string())).code, 0);
   const std::string bind = address(7);
-  Process server(serve_args(bind, {"--frames", "3", "--seconds", "20", "--encoding", "fp16", "--delta-threshold", "0",
+  Process server(serve_args(bind, {"--frames", "3", "--seconds", "20", "--encoding", "fp16", "--delta-threshold", "0", "--moment-threshold", "0",
                                    "--sky", "2,1.5,1"}, "open_sphere.gltf"),
                  dir_ / "serve");
   ASSERT_TRUE(wait_for(dir_ / "serve", "update 3:", 15.0));
@@ -130,7 +130,7 @@ TEST_F(ServeView, LateJoinerRendersEveryProbeInItsFirstFrame) {
   const std::string bind = address(2);
   Process server({"serve", scene_path("cornell_box.gltf"), "--bind", bind, "--grid", "4,4,4",
                   "--probe-samples", "8", "--bounces", "4", "--schedule", "uniform", "--frames", "200",
-                  "--fps", "1000", "--seconds", "40", "--delta-threshold", "0"},
+                  "--fps", "1000", "--seconds", "40", "--delta-threshold", "0", "--moment-threshold", "0"},
                  dir_ / "serve");
   ASSERT_TRUE(wait_for(dir_ / "serve", "update 200:", 35.0)) << cli::slurp(dir_ / "serve");
   const cli::Result v = run("view " + cli::cornell() + " --grid 4,4,4 " + kImage + " --connect " +
