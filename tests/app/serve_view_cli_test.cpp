@@ -206,10 +206,15 @@ TEST_F(ServeView, WithoutServerRendersBakedProbesAndSaysSo) {
   ASSERT_EQ(baked.code, 0) << baked.err;
   EXPECT_NE(baked.err.find("no probe server at"), std::string::npos) << baked.err;
   EXPECT_NE(baked.err.find("baked probes of"), std::string::npos) << baked.err;
-  const cli::Result direct = run("view " + cli::cornell() + " --grid 4,4,4 " + kImage + " --wait-ms 200 --connect " +
-                                           address(5) + " --out " + quote((dir_ / "d").string()));
+  const cli::Result direct = run("view " + cli::cornell() + " --grid 4,4,4 " + kImage + " --wait-ms 400 --connect " +
+                                           address(5) + " --out " + quote((dir_ / "d").string()) + " --timings " +
+                                           quote((dir_ / "t.json").string()));
   ASSERT_EQ(direct.code, 0) << direct.err;
   EXPECT_NE(direct.err.find("direct light only"), std::string::npos) << direct.err;
+  // --wait-ms bounds the stream description's wait and the first frame's together: the
+  // description took all 400 ms, so the first frame does not wait again (it waited another
+  // 400 ms before; a poll that does not wait takes well under a millisecond).
+  EXPECT_LT(timings("t.json")["frames"][0]["stages_ms"]["probe_receive"].get<double>(), 200.0);
   const cli::Result c = run("compare " + quote((dir_ / "b/frame_0000.exr").string()) + " " +
                                       quote((dir_ / "d/frame_0000.exr").string()));
   EXPECT_LT(psnr_of(c), 60.0) << c.out;  // the baked probes add light
