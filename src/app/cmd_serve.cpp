@@ -1,6 +1,7 @@
 // ddish serve SCENE [--bind tcp://127.0.0.1:PORT] [--insecure] [--fps F] [--frames N]
 //                   [--seconds S] [--time T] [--encoding fp16|shared-exponent|compact] [--zstd]
-//                   [--delta-threshold R] [--delta-floor A] [--client-timeout-ms MS]
+//                   [--delta-threshold R] [--delta-floor A] [--moment-threshold M]
+//                   [--client-timeout-ms MS]
 //                   [--client-budget-ms MS] [--bricks I/N] [--curve-secret FILE --allow-keys DIR]
 //                   [--timings FILE.json] [probe options] [--probe-visibility R]
 //                   [--probe-relocation] [schedule options]
@@ -12,13 +13,14 @@
 // client's views converge as fast as if it were alone: tests/probes/test_scheduler_clients.cpp),
 // runs the one probe update, and publishes the delta of
 // what changed (net/published_probes.h: --delta-threshold), each sent probe with its relocation
-// offset and, when they moved past the same threshold, its distance moments (--probe-visibility,
-// default 8 as render's); between ticks it answers snapshot
+// offset and, when its map moved past --moment-threshold, its distance moments
+// (--probe-visibility, default 8 as render's); between ticks it answers snapshot
 // requests and takes the clients' views. A client silent for --client-timeout-ms stops counting.
 // With no client it idles (publishes empty deltas as heartbeats, traces nothing); --frames N
 // instead makes N updates whatever the clients, then serves their result. --seconds S stops it
 // after S seconds, SIGINT / SIGTERM at once; either way --timings is written (per tick: whether
-// it updated, probe ms, probes traced / sent / deactivated / held back, bytes, clients).
+// it updated, probe ms, probes traced / sent / sent with their maps / deactivated / held back,
+// bytes, clients).
 // The grid is cut into bricks of 4x4x4 probes (net/bricks.h), each published as a stream of its
 // own under its topic; --bricks I/N makes this server own only share I of N (brick b when
 // b mod N == I): it traces, publishes and answers snapshots for those alone, so N servers with
@@ -88,7 +90,7 @@ struct ServeArgs {
   bool zstd = false;
   float threshold = 0.01f;
   float floor = 0.0f;
-  float moment_threshold = 0.01f;
+  float moment_threshold = 0.005f;
   int client_timeout_ms = 2000;
   double client_budget_ms = 0.0;  // > 0: the tick's budget is this x the connected clients
   std::string timings;

@@ -56,7 +56,7 @@ class ServeView : public cli::TempDirTest {
 
 // The view renders what `ddish render` renders after the same 3 updates with the same seed,
 // visibility included: every sent probe carries its relocation offset (f32) and, at
-// --delta-threshold 0, its distance-moment map whenever any texel of it moved at all (fp16, the
+// --delta-threshold 0 and --moment-threshold 0, its distance-moment map whenever any texel of it moved at all (fp16, the
 // halves the renderer uploads; the view's snapshot holds every map sent), so with fp16 coefficients the images are
 // identical; the compact encoding's coefficient error (about 1% of L0 in the high bands) costs
 // 58.6 dB here (measured; 57.9 dB on net_figures' 8x8x8 Cornell box), asserted >= 55 dB. A
@@ -280,6 +280,7 @@ TEST_F(ServeView, BadOptionsExitTwoWithOneLine) {
         "serve " + scene + " --bind tcp://127.0.0.1:65535 --seconds 1",
         "serve " + scene + " --encoding fp8 --seconds 1",
         "serve " + scene + " --delta-threshold -1 --seconds 1",
+        "serve " + scene + " --moment-threshold nan --seconds 1",
         "serve " + scene + " --client-budget-ms -2 --seconds 1",
         "serve " + scene + " --sky 1,2 --seconds 1",
         "view " + scene + " --connect nowhere",
