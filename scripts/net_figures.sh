@@ -10,12 +10,9 @@
 #   4. the server's work per tick (update + publish + requests, not idling) against 1, 2, 4 and 8
 #      clients (64x64 views each, visibility schedule), median over the ticks after the first 30;
 #   5. reconnection times from the 4-client x 10-restart fault test (tests/app), per client;
-#   6. what a relay forwards (bench/net_relay: bricks at 30 ticks/s to 1 and 4 clients);
-#   7. the moment maps' bytes against a client's image error, per --moment-threshold (and without
-#      maps): bytes and maps per tick after the first 30 of a 150-tick run as in 2., and the PSNR
-#      of a view that joins after 60 updates against the in-process render of those 60 (so it
-#      holds the maps as the threshold left them), serve's defaults otherwise.
-# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24069 and 24100-24107; ~7 minutes.
+#   6. what a relay forwards (bench/net_relay: bricks at 30 ticks/s to 1 and 4 clients).
+# (scripts/net_moment_curve.sh: the moment maps' bytes against a client's image error.)
+# Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24039 and 24100-24107; ~4 minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build}
@@ -123,28 +120,3 @@ PY
 echo
 "$B/bench/net_relay" --grid 16 --fps 30 --seconds 3 --clients 1,4 --port 24100
 
-echo
-echo "moment_threshold,bytes_per_tick_after_1s,bytes_per_second_at_30_ticks,maps_per_tick,probes_per_tick,psnr_vs_in_process_db"
-R="--grid 8,8,8 --probe-samples 64 --schedule uniform"
-for vis in 8 0; do
-  "$B/ddish" render $S $R $IMAGE --probe-visibility $vis --frames 60 --warmup-ms 0 --out "$D/curve_render$vis" >/dev/null 2>&1
-done
-port=24050
-for T in 0 0.005 0.01 0.02 none; do
-  if [ $T = none ]; then opt="--probe-visibility 0"; vis=0; else opt="--moment-threshold $T"; vis=8; fi
-  "$B/ddish" serve $S $R --bind tcp://127.0.0.1:$port --frames 150 --fps 30 --seconds 6 --timings "$D/curve.json" $opt >/dev/null 2>&1
-  "$B/ddish" serve $S $R --bind tcp://127.0.0.1:$((port + 1)) --frames 60 --seconds 60 $opt >"$D/curve.log" 2>&1 &
-  pid=$!
-  wait_for "$D/curve.log" "update 60:"
-  "$B/ddish" view $S --grid 8,8,8 $IMAGE --connect tcp://127.0.0.1:$((port + 1)) --out "$D/curve_view" >/dev/null 2>&1
-  kill -TERM $pid; wait $pid || true
-  psnr=$("$B/ddish" compare "$D/curve_view/frame_0000.exr" "$D/curve_render$vis/frame_0059.exr" | awk '/psnr/ {print $2}')
-  python3 - "$D/curve.json" "$T" "$psnr" <<'PY'
-import json, sys
-t = [x for x in json.load(open(sys.argv[1]))["ticks"] if x["updated"]][30:]
-n = max(1, len(t))
-b = sum(x["bytes"] for x in t) / n
-print(f'{sys.argv[2]},{b:.0f},{30 * b:.0f},{sum(x["maps_sent"] for x in t) / n:.1f},{sum(x["probes_sent"] for x in t) / n:.1f},{sys.argv[3]}')
-PY
-  port=$((port + 2))
-done
