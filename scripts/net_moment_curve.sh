@@ -35,7 +35,7 @@ for T in $THRESHOLDS; do
   "$B/ddish" serve $S $R --bind tcp://127.0.0.1:$((port + 1)) --frames 60 --seconds 60 $opt $EXTRA >"$D/curve.log" 2>&1 &
   pid=$!
   wait_for "$D/curve.log" "update 60:"
-  "$B/ddish" view $S --grid $GRID $IMAGE --connect tcp://127.0.0.1:$((port + 1)) --out "$D/curve_view" >/dev/null 2>"$D/view.log"
+  "$B/ddish" view $S --grid $GRID $IMAGE --wait-ms 10000 --connect tcp://127.0.0.1:$((port + 1)) --out "$D/curve_view" >/dev/null 2>"$D/view.log"
   kill -TERM $pid; wait $pid || true
   # A view that rendered before the snapshot came measures the wait, not the maps.
   grep -q "snapshot of frame" "$D/view.log" || { echo "threshold $T: the view rendered without the server's snapshot:" >&2; cat "$D/view.log" >&2; }
