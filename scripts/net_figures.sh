@@ -11,6 +11,7 @@
 #      clients (64x64 views each, visibility schedule), median over the ticks after the first 30;
 #   5. reconnection times from the 4-client x 10-restart fault test (tests/app), per client;
 #   6. what a relay forwards (bench/net_relay: bricks at 30 ticks/s to 1 and 4 clients).
+# (scripts/net_moment_curve.sh: the moment maps' bytes against a client's image error.)
 # Usage: bash scripts/net_figures.sh [BUILD_DIR] (default build/); ports 24000-24039 and 24100-24107; ~4 minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -31,7 +32,7 @@ for run in fp16:8 shared-exponent:8 compact:8 fp16:0 compact:0; do
   enc=${run%:*} vis=${run#*:}
   for z in "" "--zstd"; do
     "$B/ddish" serve $S $PROBES --probe-visibility $vis --bind tcp://127.0.0.1:$port --frames 5 --seconds 30 \
-      --encoding $enc $z --delta-threshold 0 --timings "$D/serve.json" >"$D/serve.log" 2>&1 &
+      --encoding $enc $z --delta-threshold 0 --moment-threshold 0 --timings "$D/serve.json" >"$D/serve.log" 2>&1 &
     pid=$!
     wait_for "$D/serve.log" "update 5:"
     "$B/ddish" view $S --grid 8,8,8 $IMAGE --connect tcp://127.0.0.1:$port --out "$D/view" >/dev/null 2>&1
@@ -51,7 +52,7 @@ PY
 done
 
 echo
-echo "scene,bytes_per_second,ticks,mean_probes_sent_per_tick_after_1s"
+echo "scene,bytes_per_second,ticks,mean_probes_sent_per_tick_after_1s,mean_maps_sent_per_tick_after_1s"
 for scene in cornell_box cornell_animated; do
   "$B/ddish" serve scenes/$scene.gltf --grid 8,8,8 --probe-samples 64 --schedule uniform --bind tcp://127.0.0.1:$port \
     --frames 150 --fps 30 --seconds 6 --timings "$D/rate.json" >/dev/null 2>&1
@@ -60,7 +61,9 @@ import json, sys
 d = json.load(open(sys.argv[1]))
 t = [x for x in d["ticks"] if x["updated"]]
 late = t[30:]
-print(f'{sys.argv[2]},{d["summary"]["bytes_per_second"]:.0f},{len(d["ticks"])},{sum(x["probes_sent"] for x in late) / max(1, len(late)):.1f}')
+n = max(1, len(late))
+print(f'{sys.argv[2]},{d["summary"]["bytes_per_second"]:.0f},{len(d["ticks"])},{sum(x["probes_sent"] for x in late) / n:.1f},'
+      f'{sum(x["maps_sent"] for x in late) / n:.1f}')
 PY
   port=$((port + 2))
 done
@@ -116,3 +119,4 @@ PY
 
 echo
 "$B/bench/net_relay" --grid 16 --fps 30 --seconds 3 --clients 1,4 --port 24100
+

@@ -215,7 +215,8 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     std::fprintf(stderr, "%s: probe tracer %s\n", a.tag(), tracer->why.c_str());
   }
   const bool gpu_tracer = tracer && tracer->kind == TracerKind::vulkan;
-  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream_args(a), placement, a.tag())
+  StreamArgs stream = stream_args(a);  // its wait_ms: what the stream description's wait left
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream, placement, a.tag())
                                       : local_volume(a.probe, placement.grid);
   const std::uint32_t empty_probes = remote ? 0 : leave_out_empty_probes(volume, s);
 
@@ -317,7 +318,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     return make_frame_views(posed, choice, a.display, a.view).views;
   };
   const std::unique_ptr<ProbeSource> probes =
-      make_probe_source(local.get(), a.probe, a.schedule, stream_args(a), volume, identity, a.tag());
+      make_probe_source(local.get(), a.probe, a.schedule, stream, volume, identity, a.tag());
   // Indirect light switched off in the window: no probe updates either (as --no-indirect).
   const bool always = true;
   SwitchableProbes switchable(*probes, controls ? controls->indirect() : always);
@@ -553,8 +554,8 @@ Action make_view(CLI::App& root) {
                   "baked probes (ddish probes --out) to render with until the server answers")
       ->check(CLI::ExistingFile);
   cmd->add_option("--wait-ms", a->wait_ms,
-                  "how long the client waits for the servers' stream description (its moment maps), then the "
-                  "first frame for their snapshot")
+                  "how long the client waits in all for the servers' stream description (its moment maps) and "
+                  "then, with what is left, the first frame for their snapshot")
       ->capture_default_str();
   cmd->add_option("--frame-wait-ms", a->frame_wait_ms,
                   "each later frame waits up to this long for the server's next frame (0: takes what arrived)")

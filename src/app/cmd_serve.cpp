@@ -1,6 +1,7 @@
 // ddish serve SCENE [--bind tcp://127.0.0.1:PORT] [--insecure] [--fps F] [--frames N]
 //                   [--seconds S] [--time T] [--encoding fp16|shared-exponent|compact] [--zstd]
-//                   [--delta-threshold R] [--delta-floor A] [--client-timeout-ms MS]
+//                   [--delta-threshold R] [--delta-floor A] [--moment-threshold M]
+//                   [--client-timeout-ms MS]
 //                   [--client-budget-ms MS] [--bricks I/N] [--curve-secret FILE --allow-keys DIR]
 //                   [--timings FILE.json] [probe options] [--probe-visibility R]
 //                   [--probe-relocation] [schedule options]
@@ -12,13 +13,14 @@
 // client's views converge as fast as if it were alone: tests/probes/test_scheduler_clients.cpp),
 // runs the one probe update, and publishes the delta of
 // what changed (net/published_probes.h: --delta-threshold), each sent probe with its relocation
-// offset and, when they moved past the same threshold, its distance moments (--probe-visibility,
-// default 8 as render's); between ticks it answers snapshot
+// offset and, when its map moved past --moment-threshold, its distance moments
+// (--probe-visibility, default 8 as render's); between ticks it answers snapshot
 // requests and takes the clients' views. A client silent for --client-timeout-ms stops counting.
 // With no client it idles (publishes empty deltas as heartbeats, traces nothing); --frames N
 // instead makes N updates whatever the clients, then serves their result. --seconds S stops it
 // after S seconds, SIGINT / SIGTERM at once; either way --timings is written (per tick: whether
-// it updated, probe ms, probes traced / sent / deactivated / held back, bytes, clients).
+// it updated, probe ms, probes traced / sent / sent with their maps / deactivated / held back,
+// bytes, clients).
 // The grid is cut into bricks of 4x4x4 probes (net/bricks.h), each published as a stream of its
 // own under its topic; --bricks I/N makes this server own only share I of N (brick b when
 // b mod N == I): it traces, publishes and answers snapshots for those alone, so N servers with
@@ -88,6 +90,7 @@ struct ServeArgs {
   bool zstd = false;
   float threshold = 0.01f;
   float floor = 0.0f;
+  float moment_threshold = 0.005f;
   int client_timeout_ms = 2000;
   double client_budget_ms = 0.0;  // > 0: the tick's budget is this x the connected clients
   std::string timings;
@@ -104,8 +107,8 @@ void check(const ServeArgs& a) {
   if (a.frames < 0 || a.seconds < 0.0) throw std::invalid_argument("--frames and --seconds must be >= 0");
   if (!net::parse_encoding(a.encoding))
     throw std::invalid_argument("--encoding must be fp16, shared-exponent or compact, got '" + a.encoding + "'");
-  if (!(a.threshold >= 0.0f) || !(a.floor >= 0.0f))
-    throw std::invalid_argument("--delta-threshold and --delta-floor must be >= 0");
+  if (!(a.threshold >= 0.0f) || !(a.floor >= 0.0f) || !(a.moment_threshold >= 0.0f))
+    throw std::invalid_argument("--delta-threshold, --delta-floor and --moment-threshold must be >= 0");
   if (a.client_timeout_ms < 1) throw std::invalid_argument("--client-timeout-ms must be >= 1");
   if (!(a.client_budget_ms >= 0.0) || !std::isfinite(a.client_budget_ms))
     throw std::invalid_argument("--client-budget-ms must be a finite number >= 0");
@@ -145,6 +148,7 @@ void write_timings(const std::string& path, const std::vector<TickRecord>& ticks
                     {"budget_ms", t.budget_ms},
                     {"probes_traced", t.traced},
                     {"probes_sent", t.published.sent},
+                    {"maps_sent", t.published.maps},
                     {"probes_deactivated", t.published.deactivated},
                     {"probes_held_back", t.published.held_back},
                     {"probes_saturated", t.published.saturated},
@@ -202,6 +206,7 @@ int run_serve(const ServeArgs& a) {
   so.zstd = a.zstd;
   so.threshold = a.threshold;
   so.floor = a.floor;
+  so.moment_threshold = a.moment_threshold;
   // The bricks of this server's share: one stream each. The others' probes are inactive here,
   // so the scheduler never plans them.
   const net::BrickShare share = net::parse_brick_share(a.bricks);
@@ -236,14 +241,14 @@ int run_serve(const ServeArgs& a) {
   const auto& g = placement.grid;
   std::fprintf(stderr,
                "serve: %s on %s (requests %s), scene identity %016llx, stream %016llx; probes %dx%dx%d "
-               "(%s), L%d, visibility %s, %s%s, delta threshold %g (floor %g); bricks %s: %zu of %u; %s\n",
+               "(%s), L%d, visibility %s, %s%s, delta threshold %g (floor %g), moment threshold %g; bricks %s: %zu of %u; %s\n",
                s.path.c_str(), endpoint.publisher().c_str(), endpoint.requests().c_str(),
                static_cast<unsigned long long>(identity), static_cast<unsigned long long>(stream),
                g.counts().x, g.counts().y, g.counts().z, placement.how.c_str(), a.probe.sh_order,
                volume.has_moments() ? fmt::format("{0}x{0} moments over {1:g} m", volume.moment_resolution(),
                                                   volume.moment_range()).c_str()
                                     : "off",
-               a.encoding.c_str(), a.zstd ? " + zstd" : "", a.threshold, a.floor, a.bricks.c_str(),
+               a.encoding.c_str(), a.zstd ? " + zstd" : "", a.threshold, a.floor, a.moment_threshold, a.bricks.c_str(),
                owned.size(), layout.brick_count(),
                a.frames > 0 ? fmt::format("{} updates, then serving them", a.frames).c_str()
                             : "updating while clients are connected");
@@ -295,6 +300,7 @@ int run_serve(const ServeArgs& a) {
       net::PublishStats stats;
       server.publish(owned[k], published[k].publish(volume, tick, last_update_end_us, scene_time, &stats));
       rec.published.sent += stats.sent;
+      rec.published.maps += stats.maps;
       rec.published.deactivated += stats.deactivated;
       rec.published.held_back += stats.held_back;
       rec.published.saturated += stats.saturated;
@@ -342,8 +348,11 @@ Action make_serve(CLI::App& root) {
   cmd->add_option("--encoding", a->encoding, "coefficient encoding: fp16, shared-exponent or compact (distance moments travel as fp16 whatever it is)")->capture_default_str();
   cmd->add_flag("--zstd", a->zstd, "compress every frame's payload with zstd");
   cmd->add_option("--delta-threshold", a->threshold,
-                  "re-send a probe when a coefficient moved more than this fraction of its largest L0, or a "
-                  "distance moment more than this fraction of the moment range")
+                  "re-send a probe when a coefficient moved more than this fraction of its largest L0")
+      ->capture_default_str();
+  cmd->add_option("--moment-threshold", a->moment_threshold,
+                  "re-send a probe with its distance-moment map when the map's texels moved more than this "
+                  "fraction of the moment range, root mean square over the map (mean distance and spread)")
       ->capture_default_str();
   cmd->add_option("--delta-floor", a->floor, "... or more than this absolute amount, whichever is larger")
       ->capture_default_str();

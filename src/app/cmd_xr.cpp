@@ -121,7 +121,8 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
                xri.system_name().c_str(), eyes[0].width, eyes[0].height,
                xri.validation_enabled() ? ", OpenXR core validation on" : "");
 
-  probes::ProbeVolume volume = remote ? starting_volume(a.probe, a.stream, placement, "xr")
+  StreamArgs stream = a.stream;  // its wait_ms: what the stream description's wait left
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream, placement, "xr")
                                       : local_volume(a.probe, placement.grid);
   if (!remote) {
     const std::uint32_t n = leave_out_empty_probes(volume, s);
@@ -166,7 +167,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
                  placement.grid.counts().y, placement.grid.counts().z, placement.how.c_str(), renderer.sh_order(),
                  renderer.samples());
     const std::unique_ptr<ProbeSource> probes =
-        make_probe_source(local.get(), a.probe, a.schedule, a.stream, volume, identity, "xr");
+        make_probe_source(local.get(), a.probe, a.schedule, stream, volume, identity, "xr");
 
     xr::Session session(xri, gpu.device());
     const scene::Camera camera = resolve_camera(s, a.view);
@@ -269,7 +270,7 @@ Action make_xr(CLI::App& root) {
                   "probes from a ddish serve at tcp://HOST:PORT (as ddish view) instead of in-process");
   cmd->add_option("--probes", a->stream.baked, "with --connect: baked probes (ddish probes --out) until the server answers")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--wait-ms", a->stream.wait_ms, "with --connect: the wait for the servers' stream description (its moment maps), then the first frame's for their snapshot")
+  cmd->add_option("--wait-ms", a->stream.wait_ms, "with --connect: the wait in all for the servers' stream description (its moment maps) and then, with what is left, the first frame's for their snapshot")
       ->capture_default_str();
   cmd->add_option("--frame-wait-ms", a->stream.frame_wait_ms, "with --connect: each later frame's wait for the server")
       ->capture_default_str();

@@ -1,6 +1,7 @@
 #include "app/probe_setup.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <optional>
 #include <stdexcept>
@@ -58,7 +59,7 @@ net::ClientOptions client_options(const StreamArgs& stream, const char* tag) {
 
 }  // namespace
 
-probes::ProbeVolume starting_volume(const ProbeArgs& probe, const StreamArgs& stream,
+probes::ProbeVolume starting_volume(const ProbeArgs& probe, StreamArgs& stream,
                                     const Placement& placement, const char* tag) {
   std::optional<probes::ProbeVolume> baked;
   if (!stream.baked.empty()) {
@@ -72,7 +73,11 @@ probes::ProbeVolume starting_volume(const ProbeArgs& probe, const StreamArgs& st
   }
   int resolution = baked ? baked->moment_resolution() : probe.visibility;
   std::string problem;
-  if (const std::optional<net::FrameHeader> h = net::ask_stream_header(client_options(stream, tag), stream.wait_ms, &problem)) {
+  const auto asked = std::chrono::steady_clock::now();
+  const std::optional<net::FrameHeader> h = net::ask_stream_header(client_options(stream, tag), stream.wait_ms, &problem);
+  const auto waited = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - asked);
+  stream.wait_ms = std::max(0, stream.wait_ms - int(waited.count()));
+  if (h) {
     resolution = h->moment_resolution;
     std::fprintf(stderr, "%s: the server streams %s\n", tag,
                  resolution > 0 ? fmt::format("{0}x{0} distance-moment maps per probe (visibility on)", resolution).c_str()

@@ -64,7 +64,10 @@ scene::PlanItem empty_probes_item(std::uint32_t left_out, const probes::ProbeGri
 // stream.wait_ms) before the volume is made, so that the renderer sizes its visibility data
 // for what the stream carries; without an answer, the baked volume's, else --probe-visibility's
 // (8 by default, serve's default), and a server of other maps is refused with a line that says so.
-probes::ProbeVolume starting_volume(const ProbeArgs& probe, const StreamArgs& stream,
+// --wait-ms bounds both waits together: the time the description took comes off stream.wait_ms,
+// which is what the first frame then waits for the snapshot (make_probe_source), so a client
+// with no server answering waits --wait-ms once, not twice.
+probes::ProbeVolume starting_volume(const ProbeArgs& probe, StreamArgs& stream,
                                     const Placement& placement, const char* tag);
 
 // The frame loop's probe source: in-process over `local`, else the stream's client (`tag` names

@@ -6,6 +6,23 @@
 
 namespace ddish::net {
 
+float moment_map_change(std::span<const glm::vec2> a, std::span<const glm::vec2> b) {
+  if (a.size() != b.size()) throw std::invalid_argument("moment_map_change: maps of different sizes");
+  if (a.empty()) return 0.0f;
+  // The Chebyshev weight of a texel reads the mean and the variance; the spread is the variance
+  // in the mean's units, so the two changes add as lengths. One texel's change is noise (about
+  // one path a texel and update at 8x8 and 64 paths): the aggregate over the map is what moves
+  // the weights of a whole face of the cell.
+  const auto spread = [](const glm::vec2& m) { return std::sqrt(std::max(m.y - m.x * m.x, 0.0f)); };
+  double sum = 0.0;
+  for (std::size_t t = 0; t < a.size(); ++t) {
+    const double dm = double(a[t].x) - double(b[t].x);
+    const double ds = double(spread(a[t])) - double(spread(b[t]));
+    sum += dm * dm + ds * ds;
+  }
+  return float(std::sqrt(sum / double(2 * a.size())));
+}
+
 PublishedProbes::PublishedProbes(const probes::ProbeVolume& volume, std::uint64_t scene_id,
                                  std::uint64_t stream_id, const StreamOptions& options,
                                  std::vector<std::uint32_t> probes)
@@ -99,14 +116,11 @@ std::vector<std::uint8_t> PublishedProbes::publish(const probes::ProbeVolume& vo
         const glm::vec3 d = glm::abs(now[j] - src[j]);
         change = std::max({change, d.x, d.y, d.z});
       }
-      float moment_change = 0.0f;
-      for (std::size_t t = 0; t < texels_; ++t) {
-        const glm::vec2 d = glm::abs(moments_now[t] - src_moments[t]);
-        moment_change = std::max({moment_change, d.x, d.y});
-      }
+      const float moment_change =
+          texels_ > 0 ? moment_map_change(moments_now, std::span<const glm::vec2>(src_moments, texels_)) : 0.0f;
       const float l0 = std::max({std::fabs(now[0].x), std::fabs(now[0].y), std::fabs(now[0].z)});
       const float allowed = std::max(options_.threshold * l0, options_.floor);
-      send_map = moment_change > options_.threshold;
+      send_map = moment_change > options_.moment_threshold;
       send_coefficients = send_map || change > allowed;
       if (!send_coefficients) {
         if (change > 0.0f || moment_change > 0.0f) ++s.held_back;

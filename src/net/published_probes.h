@@ -7,14 +7,16 @@
 // is not traced is never re-sent for its own rounding). A subscriber's probe therefore differs
 // from the server's by at most that amount plus the encoding's error (probe_encoding.h).
 // threshold 0 and floor 0: every probe whose coefficients changed at all is sent. With distance
-// moments (a volume of moment resolution R > 0), a probe's moment map is sent when a texel moved
-// by more than `threshold` since the map last sent (the moments are fractions of the range, so
-// the same number reads as a fraction of it), when the probe is sent for the first time since it
-// was inactive, and when its relocation offset changed; a probe sent with its map is sent with
-// its coefficients and offset too, one re-sent for its coefficients alone carries no map (the
-// subscribers keep the one they hold, within the threshold of the server's). Moment maps are
-// running averages of first-hit distances that settle long before the coefficients stop
-// moving, so most probes of a tick travel without theirs (docs/protocol.md has the figures).
+// moments (a volume of moment resolution R > 0), a probe's moment map is sent when it moved by
+// more than `moment_threshold` since the map last sent, by moment_map_change's measure (the root
+// mean square over the texels of the change of mean distance and spread, fractions of the
+// range; 0: any change), when the probe is sent for the first time since it was inactive, and
+// when its relocation offset changed; a probe sent with its map is sent with its coefficients and
+// offset too, one re-sent for its coefficients alone carries no map (the subscribers keep the one
+// they hold, within the threshold of the server's). The threshold is over the map, not a texel:
+// at 64 paths a probe an 8x8 map gets about one path a texel and update, so some texel of almost
+// every map moves by 1 % of the range every update, while the map as a whole moves far less
+// (docs/protocol.md has the figures: the bytes against the client's image error).
 //
 // A stream may carry a subset of the grid's probes (a brick, bricks.h): then its frames list
 // only those, and its keyframes say nothing of the others.
@@ -30,6 +32,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "net/probe_frame.h"
@@ -43,7 +46,16 @@ struct StreamOptions {
   int zstd_level = 3;
   float threshold = 0.0f;  // relative to the probe's largest L0 channel
   float floor = 0.0f;      // absolute, in the coefficients' units
+  // A probe's moment map goes again when moment_map_change (below) since the map last sent
+  // exceeds this (a fraction of the moment range).
+  float moment_threshold = 0.0f;
 };
+
+// How far apart two moment maps of one probe are for the Chebyshev test: the root mean square,
+// over the texels, of the change of the mean distance mu = m1 and of the spread
+// sigma = sqrt(m2 - m1^2), both fractions of the moment range. Zero only for maps whose
+// texels all hold the same (mu, sigma).
+float moment_map_change(std::span<const glm::vec2> a, std::span<const glm::vec2> b);
 
 struct PublishStats {
   std::uint32_t sent = 0;         // probes with coefficients in the delta

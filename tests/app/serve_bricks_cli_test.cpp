@@ -48,7 +48,7 @@ TEST_F(ServeBricks, TwoServersAndARelayRenderWhatOneProcessRenders) {
   for (int k = 0; k < 2; ++k) {
     std::vector<std::string> args = {"serve", std::string(DDISH_SOURCE_DIR) + "/scenes/cornell_box.gltf", "--bind", k == 0 ? s0 : s1, "--bricks",
                                      std::to_string(k) + "/2", "--frames", "3", "--seconds", "30",
-                                     "--encoding", "fp16", "--delta-threshold", "0"};
+                                     "--encoding", "fp16", "--delta-threshold", "0", "--moment-threshold", "0"};
     for (const char* a : {"--grid", "8,4,4", "--probe-samples", "16", "--bounces", "2", "--schedule", "uniform"})
       args.push_back(a);
     servers.push_back(std::make_unique<Process>(args, dir_ / ("serve" + std::to_string(k))));

@@ -56,7 +56,7 @@ class ServeView : public cli::TempDirTest {
 
 // The view renders what `ddish render` renders after the same 3 updates with the same seed,
 // visibility included: every sent probe carries its relocation offset (f32) and, at
-// --delta-threshold 0, its distance-moment map whenever any texel of it moved at all (fp16, the
+// --delta-threshold 0 and --moment-threshold 0, its distance-moment map whenever any texel of it moved at all (fp16, the
 // halves the renderer uploads; the view's snapshot holds every map sent), so with fp16 coefficients the images are
 // identical; the compact encoding's coefficient error (about 1% of L0 in the high bands) costs
 // 58.6 dB here (measured; 57.9 dB on net_figures' 8x8x8 Cornell box), asserted >= 55 dB. A
@@ -74,7 +74,7 @@ TEST_F(ServeView, ViewEqualsInProcessRender) {
     const std::string bind = address(test++);
     const std::string name = std::string(encoding) + "_" + visibility;
     Process server(serve_args(bind, {"--frames", "3", "--seconds", "20", "--encoding", encoding,
-                                     "--delta-threshold", "0", "--probe-relocation", "--probe-visibility", visibility}),
+                                     "--delta-threshold", "0", "--moment-threshold", "0", "--probe-relocation", "--probe-visibility", visibility}),
                    dir_ / ("serve_" + name));
     ASSERT_TRUE(wait_for(dir_ / ("serve_" + name), "update 3:", 15.0));
     const std::string out = (dir_ / name).string();
@@ -106,7 +106,7 @@ TEST_F(ServeView, ServerTracesUnderItsSky) {
                   " --frames 3 --warmup-ms 0 " +
                   (which == "bright" ? sky : "") + " --out " + quote((dir_ / which).string())).code, 0);
   const std::string bind = address(7);
-  Process server(serve_args(bind, {"--frames", "3", "--seconds", "20", "--encoding", "fp16", "--delta-threshold", "0",
+  Process server(serve_args(bind, {"--frames", "3", "--seconds", "20", "--encoding", "fp16", "--delta-threshold", "0", "--moment-threshold", "0",
                                    "--sky", "2,1.5,1"}, "open_sphere.gltf"),
                  dir_ / "serve");
   ASSERT_TRUE(wait_for(dir_ / "serve", "update 3:", 15.0));
@@ -130,7 +130,7 @@ TEST_F(ServeView, LateJoinerRendersEveryProbeInItsFirstFrame) {
   const std::string bind = address(2);
   Process server({"serve", scene_path("cornell_box.gltf"), "--bind", bind, "--grid", "4,4,4",
                   "--probe-samples", "8", "--bounces", "4", "--schedule", "uniform", "--frames", "200",
-                  "--fps", "1000", "--seconds", "40", "--delta-threshold", "0"},
+                  "--fps", "1000", "--seconds", "40", "--delta-threshold", "0", "--moment-threshold", "0"},
                  dir_ / "serve");
   ASSERT_TRUE(wait_for(dir_ / "serve", "update 200:", 35.0)) << cli::slurp(dir_ / "serve");
   const cli::Result v = run("view " + cli::cornell() + " --grid 4,4,4 " + kImage + " --connect " +
@@ -206,10 +206,15 @@ TEST_F(ServeView, WithoutServerRendersBakedProbesAndSaysSo) {
   ASSERT_EQ(baked.code, 0) << baked.err;
   EXPECT_NE(baked.err.find("no probe server at"), std::string::npos) << baked.err;
   EXPECT_NE(baked.err.find("baked probes of"), std::string::npos) << baked.err;
-  const cli::Result direct = run("view " + cli::cornell() + " --grid 4,4,4 " + kImage + " --wait-ms 200 --connect " +
-                                           address(5) + " --out " + quote((dir_ / "d").string()));
+  const cli::Result direct = run("view " + cli::cornell() + " --grid 4,4,4 " + kImage + " --wait-ms 400 --connect " +
+                                           address(5) + " --out " + quote((dir_ / "d").string()) + " --timings " +
+                                           quote((dir_ / "t.json").string()));
   ASSERT_EQ(direct.code, 0) << direct.err;
   EXPECT_NE(direct.err.find("direct light only"), std::string::npos) << direct.err;
+  // --wait-ms bounds the stream description's wait and the first frame's together: the
+  // description took all 400 ms, so the first frame does not wait again (it waited another
+  // 400 ms before; a poll that does not wait takes well under a millisecond).
+  EXPECT_LT(timings("t.json")["frames"][0]["stages_ms"]["probe_receive"].get<double>(), 200.0);
   const cli::Result c = run("compare " + quote((dir_ / "b/frame_0000.exr").string()) + " " +
                                       quote((dir_ / "d/frame_0000.exr").string()));
   EXPECT_LT(psnr_of(c), 60.0) << c.out;  // the baked probes add light
@@ -275,6 +280,7 @@ TEST_F(ServeView, BadOptionsExitTwoWithOneLine) {
         "serve " + scene + " --bind tcp://127.0.0.1:65535 --seconds 1",
         "serve " + scene + " --encoding fp8 --seconds 1",
         "serve " + scene + " --delta-threshold -1 --seconds 1",
+        "serve " + scene + " --moment-threshold nan --seconds 1",
         "serve " + scene + " --client-budget-ms -2 --seconds 1",
         "serve " + scene + " --sky 1,2 --seconds 1",
         "view " + scene + " --connect nowhere",

@@ -2,8 +2,10 @@
 // mirror makes of it (ProbeMirror): empty deltas for a static volume, the threshold's error
 // bound, late joiners holding what everyone holds, deactivation, old / gap / other-scene frames,
 // and the visibility data (distance moments, relocation offsets, probe states) end to end.
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -245,6 +247,12 @@ probes::ProbeVolume visibility_volume(std::mt19937_64& rng) {
   return v;
 }
 
+// Moves a texel's mean distance by d and keeps its spread (the variance m2 - m1^2).
+void move_mean(glm::vec2& m, float d) {
+  m.y += (m.x + d) * (m.x + d) - m.x * m.x;
+  m.x += d;
+}
+
 void expect_same_visibility(const probes::ProbeVolume& client, const probes::ProbeVolume& server) {
   for (std::uint32_t i = 0; i < server.probe_count(); ++i) {
     EXPECT_EQ(client.state(i).active(), server.state(i).active()) << i;
@@ -260,17 +268,19 @@ void expect_same_visibility(const probes::ProbeVolume& client, const probes::Pro
 TEST(Stream, MomentsOffsetsAndStatesReachEveryClient) {
   std::mt19937_64 rng(8);
   probes::ProbeVolume server = visibility_volume(rng);
-  PublishedProbes pub(server, kScene, 1, {.encoding = Encoding::kCompact, .threshold = 0.01f});
+  for (glm::vec2& m : server.moments(17)) m = glm::vec2(0.4f, 0.4f * 0.4f + 0.01f);  // room to move
+  PublishedProbes pub(server, kScene, 1, {.encoding = Encoding::kCompact, .threshold = 0.01f, .moment_threshold = 0.01f});
   probes::ProbeVolume client(server.grid(), 2, 4);
   ProbeMirror mirror(client, kScene);
   std::vector<std::uint32_t> changed;
   pub.publish(server, 1, 0, 0.0);
   ASSERT_EQ(mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
   expect_same_visibility(client, server);
-  // A moment that moves by more than the threshold re-sends its probe, and only it; a probe that
+  // A map that moves by more than the threshold re-sends its probe, and only it; a probe that
   // leaves geometry after a reset and is relocated afresh, too.
-  server.moments(17)[3] += glm::vec2(-0.05f, 0.0f);
-  server.moments(18)[3] += glm::vec2(-0.005f, 0.0f);  // within 0.01 of the range: held back
+  for (glm::vec2& m : server.moments(17)) move_mean(m, -0.05f);  // 0.05 / sqrt(2) = 0.035
+  const std::vector<glm::vec2> map18(server.moments(18).begin(), server.moments(18).end());
+  move_mean(server.moments(18)[3], -0.02f);  // 0.02 / sqrt(32) = 0.0035 of the range: held back
   server.set_offset(40, glm::vec3(0.1f, 0.1f, 0.1f));
   server.deactivate(12, true);
   PublishStats stats;
@@ -281,7 +291,7 @@ TEST(Stream, MomentsOffsetsAndStatesReachEveryClient) {
   EXPECT_EQ(stats.deactivated, 1u);
   ASSERT_EQ(mirror.apply(decode_ok(delta).frame, changed), ApplyOutcome::kApplied);
   EXPECT_EQ(changed, (std::vector<std::uint32_t>{12, 17, 40}));
-  server.moments(18)[3] -= glm::vec2(-0.005f, 0.0f);  // what the client holds for 18
+  std::copy(map18.begin(), map18.end(), server.moments(18).begin());  // what the client holds for 18
   expect_same_visibility(client, server);
   // A late joiner's snapshot carries the same.
   probes::ProbeVolume late(server.grid(), 2, 4);
@@ -302,14 +312,34 @@ void expect_same_probes(const probes::ProbeVolume& a, const probes::ProbeVolume&
   }
 }
 
+// moment_map_change: the root mean square over the texels of the change of the mean distance
+// and of the spread, each a fraction of the range.
+TEST(Stream, MomentMapChangeIsTheRmsOfMeanAndSpread) {
+  const auto map = [](float mean, float spread) {
+    return std::vector<glm::vec2>(16, glm::vec2(mean, mean * mean + spread * spread));
+  };
+  const std::vector<glm::vec2> a = map(0.5f, 0.1f);
+  EXPECT_EQ(moment_map_change(a, a), 0.0f);
+  EXPECT_NEAR(moment_map_change(a, map(0.54f, 0.1f)), 0.04f / std::sqrt(2.0f), 1e-5f);  // every mean
+  EXPECT_NEAR(moment_map_change(a, map(0.5f, 0.13f)), 0.03f / std::sqrt(2.0f), 1e-5f);  // every spread
+  std::vector<glm::vec2> one = a;
+  move_mean(one[7], 0.08f);
+  EXPECT_NEAR(moment_map_change(a, one), 0.08f / std::sqrt(32.0f), 1e-5f);  // one texel of 16
+  EXPECT_NEAR(moment_map_change(one, a), moment_map_change(a, one), 1e-7f);
+  EXPECT_THROW(moment_map_change(a, std::vector<glm::vec2>(8, a[0])), std::invalid_argument);
+}
+
 // A probe re-sent for its coefficients alone carries no moment map, and the client keeps the
-// map it holds; a map that moved beyond the threshold since the one last sent travels (with its
-// probe's coefficients, whether they moved or not), as does the map of a probe back from
-// inactive; a late joiner's keyframe holds every map everyone holds.
+// map it holds; a map that moved beyond the moment threshold (moment_map_change) since the one
+// last sent travels (with its probe's coefficients, whether they moved or not), as does the map
+// of a probe back from inactive; a late joiner's keyframe holds every map everyone holds.
 TEST(Stream, MomentMapsTravelOnlyWhenTheyMove) {
   std::mt19937_64 rng(10);
   probes::ProbeVolume server = visibility_volume(rng);
-  PublishedProbes pub(server, kScene, 1, {.encoding = Encoding::kCompact, .threshold = 0.01f});
+  for (std::uint32_t i : {20u, 21u, 22u})  // moments with room to move within [0, 1]
+    for (glm::vec2& m : server.moments(i)) m = glm::vec2(0.4f, 0.4f * 0.4f + 0.01f);
+  PublishedProbes pub(server, kScene, 1,
+                      {.encoding = Encoding::kCompact, .threshold = 0.01f, .moment_threshold = 0.01f});
   probes::ProbeVolume client(server.grid(), 2, 4);
   ProbeMirror mirror(client, kScene);
   std::vector<std::uint32_t> changed;
@@ -319,8 +349,10 @@ TEST(Stream, MomentMapsTravelOnlyWhenTheyMove) {
   ASSERT_EQ(mirror.apply(decode_ok(pub.snapshot()).frame, changed), ApplyOutcome::kApplied);
   const std::vector<glm::vec2> map20(client.moments(20).begin(), client.moments(20).end());
   server.set_sh(20, test::radiance_probe(rng, 2, 1.0f));  // coefficients far beyond 1 %
-  server.moments(20)[5] += glm::vec2(0.005f, 0.0f);       // within the threshold: not sent
-  server.moments(21)[7] -= glm::vec2(0.0f, 0.05f);        // beyond it: sent
+  // One texel's mean 0.05 of the range away is 0.05 / sqrt(2 x 16) = 0.0088 of the map: within
+  // the threshold, not sent (one texel of a map gets about one path an update: noise).
+  move_mean(server.moments(20)[5], 0.05f);
+  for (glm::vec2& m : server.moments(21)) move_mean(m, 0.02f);  // 0.02 / sqrt(2) = 0.014: sent
   const auto delta = pub.publish(server, 2, 0, 0.0, &stats);
   EXPECT_EQ(stats.sent, 2u);
   EXPECT_EQ(stats.maps, 1u);
@@ -331,14 +363,14 @@ TEST(Stream, MomentMapsTravelOnlyWhenTheyMove) {
   ASSERT_EQ(mirror.apply(r.frame, changed), ApplyOutcome::kApplied);
   EXPECT_EQ(changed, (std::vector<std::uint32_t>{20, 21}));
   for (std::size_t t = 0; t < map20.size(); ++t) EXPECT_EQ(client.moments(20)[t], map20[t]) << t;  // kept
-  EXPECT_NEAR(client.moments(21)[7].y, server.moments(21)[7].y, 0x1p-11f);
+  for (std::size_t t = 0; t < 16; ++t) EXPECT_NEAR(client.moments(21)[t].y, server.moments(21)[t].y, 0x1p-11f) << t;
   EXPECT_NEAR(client.coefficients(20)[0].x, server.coefficients(20)[0].x, 1e-2f * server.coefficients(20)[0].x);
-  // The threshold counts from the map last sent, not the last tick's: a slow drift of 0.004 per
-  // tick goes out on the third tick (0.012 > 0.01).
-  for (std::uint64_t frame = 3; frame <= 5; ++frame) {
-    server.moments(20)[5] += glm::vec2(frame == 3 ? -0.001f : 0.004f, 0.0f);  // 0.004, 0.008, 0.012
+  // The threshold counts from the map last sent, not the last tick's: 0.005 more on the same
+  // texel is 0.055 / sqrt(32) = 0.0097, within; 0.005 again, 0.060 / sqrt(32) = 0.0106, sent.
+  for (std::uint64_t frame = 3; frame <= 4; ++frame) {
+    move_mean(server.moments(20)[5], 0.005f);
     const DecodeResult drift = decode_ok(pub.publish(server, frame, 0, 0.0, &stats));
-    EXPECT_EQ(stats.maps, frame == 5 ? 1u : 0u) << frame;
+    EXPECT_EQ(stats.maps, frame == 4 ? 1u : 0u) << frame;
     ASSERT_EQ(mirror.apply(drift.frame, changed), ApplyOutcome::kApplied);
   }
   EXPECT_NEAR(client.moments(20)[5].x, server.moments(20)[5].x, 0x1p-11f);
@@ -354,7 +386,16 @@ TEST(Stream, MomentMapsTravelOnlyWhenTheyMove) {
   ASSERT_EQ(mirror.apply(back.frame, changed), ApplyOutcome::kApplied);
   for (std::size_t t = 0; t < map30.size(); ++t)
     EXPECT_EQ(sh::float_to_half(client.moments(30)[t].x), sh::float_to_half(map30[t].x)) << t;
-  // A late joiner holds exactly what the client that followed every delta holds.
+  // A map held back leaves the client within the threshold of the server's; a late joiner holds
+  // exactly what the client that followed every delta holds, not the server's newer map.
+  move_mean(server.moments(22)[0], 0.04f);
+  const DecodeResult held = decode_ok(pub.publish(server, 8, 0, 0.0, &stats));
+  EXPECT_EQ(stats.held_back, 1u);
+  ASSERT_EQ(mirror.apply(held.frame, changed), ApplyOutcome::kApplied);
+  for (std::uint32_t i = 0; i < server.probe_count(); ++i) {
+    if (!server.state(i).active()) continue;
+    EXPECT_LE(moment_map_change(client.moments(i), server.moments(i)), 0.01f + 0x1p-11f) << i;
+  }
   probes::ProbeVolume late(server.grid(), 2, 4);
   ProbeMirror late_mirror(late, kScene);
   const DecodeResult snap = decode_ok(pub.snapshot());
