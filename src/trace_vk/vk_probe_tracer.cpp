@@ -481,6 +481,8 @@ probes::UpdateStats VkProbeTracer::update(probes::ProbeVolume& volume, std::span
                        im.mirrored_moment_resolution == volume.moment_resolution();
   // Deferred copies of the volume the GPU mirrored go to it first: the copy up must not
   // overwrite the GPU's newer values with stale ones.
+  if (!in_sync && im.mirrored != &volume && !im.stale.empty())
+    throw std::logic_error("the GPU probe tracer holds deferred averages of another volume: read_back() first");
   if (!in_sync) {
     if (im.mirrored == &volume && im.coefficients && im.coefficients->size() == coefficient_bytes &&
         im.mirrored_moment_resolution == volume.moment_resolution())

@@ -64,7 +64,8 @@ class VkProbeTracer final : public probes::ProbeUpdater {
 
   // Off (the default): every update copies the updated probes' coefficients and moments into the
   // host volume. On: they stay on the GPU and the host volume's values of the probes updated
-  // since the last read_back() are stale; nothing else may write them meanwhile.
+  // since the last read_back() are stale; nothing else may write them meanwhile, and update()
+  // of another volume throws std::logic_error until they are read back.
   void defer_host_copy(bool defer);
   // Brings the volume's coefficients and moments up to date with the GPU's (a whole-buffer copy,
   // then the stale probes'), when some are stale; `volume` is the one the tracer updates.
