@@ -173,18 +173,21 @@ struct VkProbeTracer::Impl {
   int mirrored_moment_resolution = -1;
   std::uint64_t rays = 0;
 
-  // defer_host_copy: the probes updated on the GPU whose host values are not (sorted, unique
-  // once read_back() compacts them).
+  // defer_host_copy: the probes updated on the GPU whose host values are not (sorted and
+  // unique after each update, so a run of hours keeps at most one entry a probe).
   bool defer = false;
   std::vector<std::uint32_t> stale;
+  void compact_stale() {
+    std::sort(stale.begin(), stale.end());
+    stale.erase(std::unique(stale.begin(), stale.end()), stale.end());
+  }
   // Copies the GPU's averages of the stale probes of `volume` (the mirrored one) into it.
   void copy_stale(probes::ProbeVolume& volume);
 };
 
 void VkProbeTracer::Impl::copy_stale(probes::ProbeVolume& volume) {
   if (stale.empty()) return;
-  std::sort(stale.begin(), stale.end());
-  stale.erase(std::unique(stale.begin(), stale.end()), stale.end());
+  compact_stale();
   const auto coeffs = std::size_t(volume.coefficient_count());
   const auto map_texels = std::size_t(volume.moment_texels());
   const VkDeviceSize coefficient_bytes = VkDeviceSize(volume.probe_count()) * coeffs * sizeof(glm::vec3);
@@ -410,12 +413,7 @@ void VkProbeTracer::read_back(probes::ProbeVolume& volume) const {
   impl_->copy_stale(volume);
 }
 
-std::size_t VkProbeTracer::stale_probes() const {
-  std::vector<std::uint32_t>& s = impl_->stale;
-  std::sort(s.begin(), s.end());
-  s.erase(std::unique(s.begin(), s.end()), s.end());
-  return s.size();
-}
+std::size_t VkProbeTracer::stale_probes() const { return impl_->stale.size(); }
 
 std::uint64_t VkProbeTracer::rays_traced() const { return impl_->rays; }
 
@@ -627,7 +625,10 @@ probes::UpdateStats VkProbeTracer::update(probes::ProbeVolume& volume, std::span
   im.mirrored = &volume;
   im.mirrored_frame = volume.frame();
   im.mirrored_moment_resolution = volume.moment_resolution();
-  if (!im.defer) im.copy_stale(volume);
+  if (im.defer)
+    im.compact_stale();
+  else
+    im.copy_stale(volume);
   im.rays += stats.rays;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
