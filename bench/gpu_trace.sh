@@ -7,12 +7,15 @@
 # Usage: bash bench/gpu_trace.sh [BUILD_DIR] (default build-gpu/). DDISH_SCENES (default
 # ../shared/scenes beside the checkout) holds the scenes; --device N (DEVICE=N) picks the GPU;
 # ENVIRONMENT=FILE.exr|.hdr adds a run of each scene lit by that map (importance-sampled).
+# Then bench/probe_handoff times the GPU-resident hand-off on the same grids: per update, the
+# conversion of the traced probes on the device against the read-back path's copy into the CPU
+# volume plus the upload from there (medians, CSV).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 B=${1:-build-gpu}
 SCENES=${DDISH_SCENES:-../shared/scenes}
 cmake -S . -B "$B" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$B" --target trace_vk_rate ddish -j"$(nproc)"
+cmake --build "$B" --target trace_vk_rate probe_handoff ddish -j"$(nproc)"
 "$B/ddish" devices
 DEV=${DEVICE:+--device $DEVICE}
 run() {  # scene grid
@@ -24,3 +27,9 @@ run() {  # scene grid
 }
 run sponza/Sponza.gltf 16,8,8
 run breakfast_room/BreakfastRoom.gltf 8,4,8
+handoff() {  # scene grid
+  if [ ! -f "$SCENES/$1" ]; then return 0; fi
+  "$B/bench/probe_handoff" "$SCENES/$1" --grid "$2" --samples 256 --bounces 15 --rounds 8 $DEV
+}
+handoff sponza/Sponza.gltf 16,8,8
+handoff breakfast_room/BreakfastRoom.gltf 8,4,8

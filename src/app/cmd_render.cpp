@@ -129,6 +129,7 @@ struct RenderArgs {
   bool no_indirect = false;
   std::optional<std::uint32_t> device;
   std::string tracer = "auto";  // --tracer (render's in-process probes)
+  bool probe_readback = false;  // --probe-readback: no GPU-resident hand-off
   // `ddish view`: the probe stream's client is the probe source.
   std::string connect;   // empty: `ddish render`, in-process probes
   std::string baked;     // --probes FILE: the probes until a server answers
@@ -248,6 +249,10 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     local = make_in_process(a.probe, a.schedule, s,
                             frame_budget_ms(a.schedule, choice.profile ? choice.profile->budget_ms() : std::optional<double>()),
                             tracer->kind, a.device, gpu_tracer ? &gpu.device() : nullptr);
+  // The Vulkan tracer shares the renderer's device: the probes it traces go to the rasterizer on
+  // the GPU (ProbeEngine::keep_probes_on_device), the CPU volume is read back only on demand.
+  if (local && local->engine.keep_probes_on_device(!a.probe_readback))
+    std::fprintf(stderr, "%s: traced probes stay on the GPU (converted there for the rasterizer)\n", a.tag());
   LiveAttachment attachment;  // the window's GPU half goes before the context
   check_file_size_limit(gpu.device().info());
   run.validation = gpu.instance().validation_enabled();
@@ -313,6 +318,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   if (live)
     controls = std::make_unique<LiveControls>(*live, renderer, volume,
                                               local ? &local->scheduler : nullptr, a.no_indirect, a.tag());
+  if (controls && local) controls->set_volume_reader([&local, &volume] { local->engine.read_back(volume); });
   const ViewSource views = [&](const scene::Scene& posed) {
     if (controls) return controls->frame_views(posed, choice, a.display, a.view);
     return make_frame_views(posed, choice, a.display, a.view).views;
@@ -536,6 +542,7 @@ Action make_render(CLI::App& root) {
   add_schedule_options(*cmd, a->schedule);
   add_warmup_options(*cmd, a->warmup);
   add_tracer_option(*cmd, a->tracer);
+  add_probe_readback_option(*cmd, a->probe_readback);
   return [a]() { return run_render(*a); };
 }
 

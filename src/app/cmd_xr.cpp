@@ -67,6 +67,7 @@ struct XrArgs {
   std::string tonemap = "filmic";
   bool no_indirect = false;
   std::string tracer = "auto";  // --tracer, for in-process probes
+  bool probe_readback = false;  // --probe-readback: no GPU-resident hand-off
 };
 
 void check(const XrArgs& a) {
@@ -154,6 +155,9 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
     if (tracer)
       local = make_in_process(a.probe, a.schedule, s, a.schedule.budget_ms.value_or(0.0), tracer->kind, std::nullopt,
                               tracer->kind == TracerKind::vulkan ? &gpu.device() : nullptr);
+    // The GPU tracer shares the runtime's device: its probes go to the rasterizer on the GPU.
+    if (local && local->engine.keep_probes_on_device(!a.probe_readback))
+      std::fprintf(stderr, "xr: traced probes stay on the GPU (converted there for the rasterizer)\n");
     run.validation = gpu.instance().validation_enabled();
     run.vulkan_log = gpu.instance().shared_validation();
     raster::RendererOptions ro;
@@ -283,6 +287,7 @@ Action make_xr(CLI::App& root) {
   add_probe_options(*cmd, a->probe);
   add_visibility_options(*cmd, a->probe);
   add_tracer_option(*cmd, a->tracer);
+  add_probe_readback_option(*cmd, a->probe_readback);
   add_lighting_options(*cmd, a->lighting, /*exposure=*/true);
   add_schedule_options(*cmd, a->schedule);
   cmd->get_option("--budget-ms")

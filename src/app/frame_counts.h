@@ -32,6 +32,8 @@ struct FrameCounts {
   std::uint32_t probes_changed = 0;   // traced or newly inactive: what the loop hands over
   std::uint32_t probes_uploaded = 0;  // what the renderer copied (it may copy the whole volume
                                       // when many changed: ProbeTextures::kFullUploadFraction)
+  std::uint32_t probes_imported = 0;  // what the renderer converted on the GPU instead, from the
+                                      // averages of a probe tracer on its device (no CPU copy)
   std::uint32_t probes_active = 0;     // after this frame's update
   std::uint32_t probes_inside_geometry = 0;  // of the inactive ones: found inside geometry
   std::uint32_t probes_inactive = 0;   // inside geometry (or otherwise inactive) after it

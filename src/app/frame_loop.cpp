@@ -42,6 +42,15 @@ void count_probes(const probes::ProbeVolume& volume, FrameCounts& counts) {
   }
 }
 
+// The changed probes to the renderer: converted on the device from the probe tracer's averages
+// where the source keeps them there (no CPU copy), else uploaded from the volume.
+raster::ProbeUploadStats hand_off(ProbeSource& source, raster::Renderer& renderer,
+                                  const std::vector<std::uint32_t>& changed) {
+  if (const std::optional<raster::GpuProbeData> gpu = source.gpu_probes())
+    return renderer.import_probes(source.volume(), *gpu, changed);
+  return renderer.upload_probes(source.volume(), changed);
+}
+
 }  // namespace
 
 FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
@@ -52,7 +61,7 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
     const double t0 = o.loop_period > 0.0 ? std::fmod(o.time, o.loop_period) : o.time;
     probes_.posed(scene_, scene_.pose(t0), ignored);
     result.warmup = probes_.warm_up(o.warmup);
-    if (!result.warmup.changed.empty()) renderer_.upload_probes(probes_.volume(), result.warmup.changed);
+    if (!result.warmup.changed.empty()) hand_off(probes_, renderer_, result.warmup.changed);
   }
   for (int k = 0; k < o.frames; ++k) {
     if (o.pacer) {
@@ -84,8 +93,10 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
     {
       metrics::StageTimer timer(timings, "upload");
       report.counts.probes_changed = static_cast<std::uint32_t>(step.changed.size());
-      report.counts.probes_uploaded =
-          step.changed.empty() ? 0u : renderer_.upload_probes(probes_.volume(), step.changed).probes;
+      if (!step.changed.empty()) {
+        const raster::ProbeUploadStats sent = hand_off(probes_, renderer_, step.changed);
+        (sent.imported ? report.counts.probes_imported : report.counts.probes_uploaded) = sent.probes;
+      }
     }
     raster::FrameOutput frame = renderer_.render(scene_, views, o.render_request);
     // The GPU passes run while the CPU waits for the submission, so the wait is split into the

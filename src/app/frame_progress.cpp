@@ -20,13 +20,14 @@ void print_progress(const FrameReport& r, int frames) {
                          : std::string();
   std::fprintf(stderr,
                "frame %d/%d t=%.3f s: %u views; probes %.1f ms (%llu update, %u of %u active "
-               "traced at %u samples, %u changed, %u uploaded in %.1f ms), raster %.1f ms = %.2f ms/view "
+               "traced at %u samples, %u changed, %u %s in %.1f ms), raster %.1f ms = %.2f ms/view "
                "(GPU shadow %.1f + forward %.1f + tonemap %.1f), output %.1f ms, total %.1f "
                "ms%s\n",
                r.frame + 1, frames, r.t, c.views, t.stage_ms("probe_update"),
                static_cast<unsigned long long>(c.probe_updates), c.probes_traced,
                c.probe_updates > 0 ? sr.active : c.probes_active, sr.samples_per_probe,
-               c.probes_changed, c.probes_uploaded, t.stage_ms("upload"),
+               c.probes_changed, c.probes_imported > 0 ? c.probes_imported : c.probes_uploaded,
+               c.probes_imported > 0 ? "converted on the GPU" : "uploaded", t.stage_ms("upload"),
                raster_ms(t), raster_ms(t) / std::max(1u, c.views), t.stage_ms("shadow_gpu"),
                t.stage_ms("forward_gpu"), t.stage_ms("tonemap_gpu"), t.stage_ms("output"),
                t.total_ms(), budget.c_str());

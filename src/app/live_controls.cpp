@@ -36,6 +36,7 @@ std::vector<scene::View> LiveControls::frame_views(const scene::Scene& posed,
     std::fprintf(stderr, "%s: I: the run has --no-indirect, its shaders draw no probes\n", tag_);
   } else if (sw.indirect) {
     indirect_ = !indirect_;  // the renderer is idle between frames: swap what it draws with
+    if (indirect_ && read_back_) read_back_();
     renderer_.upload_probes(indirect_ ? volume_ : dark_);
     std::fprintf(stderr, "%s: I: indirect light %s\n", tag_, indirect_ ? "on" : "off");
   }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,10 @@ class LiveControls {
   std::vector<scene::View> frame_views(const scene::Scene& posed, const DisplayChoice& choice,
                                        const DisplayArgs& display, const CameraArgs& camera);
 
+  // Called before the volume is uploaded whole (indirect light switched back on): brings its
+  // values up to date where the probe tracer keeps them on the GPU (ProbeEngine::read_back).
+  void set_volume_reader(std::function<void()> read_back) { read_back_ = std::move(read_back); }
+
   const std::atomic<bool>& stop() const { return stop_; }
   const bool& indirect() const { return indirect_; }  // SwitchableProbes reads it
   // The window title and status text of a frame: the display (title only), probes / raster /
@@ -45,6 +50,7 @@ class LiveControls {
   LiveWindow& live_;
   raster::Renderer& renderer_;
   const probes::ProbeVolume& volume_;
+  std::function<void()> read_back_;
   const probes::ProbeVolume dark_;  // what "indirect off" draws: no probe has light yet
   probes::Scheduler* scheduler_;
   bool no_indirect_;

@@ -149,6 +149,8 @@ class SwitchableProbes final : public ProbeSource {
   WarmupReport warm_up(const WarmupOptions& options) override {
     return on_ ? inner_.warm_up(options) : WarmupReport{};
   }
+  std::optional<raster::GpuProbeData> gpu_probes() override { return inner_.gpu_probes(); }
+  void read_back() override { inner_.read_back(); }
 
  private:
   ProbeSource& inner_;

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "app/frame_counts.h"
@@ -17,6 +18,7 @@
 #include "metrics/timing.h"
 #include "probes/probe_tracer.h"
 #include "probes/scheduler.h"
+#include "raster/probe_import.h"
 #include "scene/view.h"
 
 namespace ddish::probes {
@@ -75,6 +77,13 @@ class ProbeSource {
   // (WarmupOptions). A source whose probes come from elsewhere (the stream's client: its first
   // frame waits for the server's snapshot) does nothing.
   virtual WarmupReport warm_up(const WarmupOptions& /*options*/) { return {}; }
+  // Where the loop takes the changed probes from: the volume's values (uploaded from the CPU),
+  // or, from a probe tracer that keeps them on the renderer's device (ProbeEngine's hand-off),
+  // the averages there, which the renderer converts on the device; volume() is then behind
+  // until read_back().
+  virtual std::optional<raster::GpuProbeData> gpu_probes() { return std::nullopt; }
+  // Brings volume()'s coefficients and moments up to date, for a reader of the CPU values.
+  virtual void read_back() {}
   // After the frame (frame index, its stages): the source learns what it cost, and fills the
   // frame's scheduler record.
   virtual void finished(int frame, const metrics::FrameTimings& timings, const ProbeStep& step,
@@ -99,6 +108,8 @@ class InProcessProbes final : public ProbeSource {
                 bool enabled, FrameCounts& counts) override;
   void set_frame_budget(double budget_ms) override { scheduler_.set_budget_ms(budget_ms); }
   WarmupReport warm_up(const WarmupOptions& options) override;
+  std::optional<raster::GpuProbeData> gpu_probes() override { return engine_.gpu_probes(); }
+  void read_back() override { engine_.read_back(volume_); }
 
  private:
   // The probes traced this frame (`traced`, increasing) and those whose flags changed since the

@@ -34,6 +34,7 @@ nlohmann::ordered_json frame_record_json(const metrics::FrameTimings& t, const F
   f["probes_traced"] = c.probes_traced;
   f["probes_changed"] = c.probes_changed;
   f["probes_uploaded"] = c.probes_uploaded;
+  f["probes_imported"] = c.probes_imported;
   f["probes_active"] = c.probes_active;
   f["probes_inactive"] = c.probes_inactive;
   f["probes_never_updated"] = c.probes_never_updated;

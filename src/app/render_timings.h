@@ -5,7 +5,8 @@
 //   and in every frame: "views", "probe_updates" (probe tracer runs, counted from the volume's
 //   update counter), "probe_rays", "probes_traced", "probes_changed" (traced or newly
 //   inactive: what the loop hands the renderer), "probes_uploaded" (what the renderer copied,
-//   the whole volume when many changed), "probes_active",
+//   the whole volume when many changed), "probes_imported" (what it converted on the GPU instead,
+//   from a probe tracer's averages on its device: the GPU-resident hand-off), "probes_active",
 //   "probes_inactive", "probes_never_updated", "oldest_probe_age", "probes_unclassified"
 //   (after the update), "raster_passes": {"shadow", "shadows_reused", "forward", "tonemap"}
 //   (raster::FrameStats), "scheduler" (probes::SchedulerFrameRecord's JSON: budget, stages,

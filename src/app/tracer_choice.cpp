@@ -20,6 +20,12 @@ void add_tracer_option(CLI::App& cmd, std::string& choice) {
       ->capture_default_str();
 }
 
+void add_probe_readback_option(CLI::App& cmd, bool& readback) {
+  cmd.add_flag("--probe-readback", readback,
+               "with --tracer vulkan: copy the traced probes back to the CPU every update and upload them "
+               "from there, instead of converting them on the GPU for the rasterizer (for comparison)");
+}
+
 TracerDecision choose_tracer(const std::string& choice, std::optional<std::uint32_t> device) {
   if (choice == "embree") return {TracerKind::embree, "embree (--tracer embree)"};
   // Only the device's description is needed: no device is opened here.
@@ -56,6 +62,7 @@ ProbeEngine::ProbeEngine(TracerKind kind, const scene::Scene& scene, const trace
     source_ = std::make_unique<probes::TracerSource>(*tracer_);
     cpu_ = std::make_unique<probes::ProbeTracer>(*source_, options);
   } else {
+    on_shared_ = shared != nullptr;
     if (!shared) {
       gpu_ = std::make_unique<gpu::Context>(gpu::ContextOptions{.device_index = device, .ray_tracing = true});
       shared = &gpu_->device();
@@ -69,6 +76,23 @@ ProbeEngine::~ProbeEngine() = default;
 probes::ProbeUpdater& ProbeEngine::updater() {
   if (cpu_) return *cpu_;
   return *vk_;
+}
+
+bool ProbeEngine::keep_probes_on_device(bool on) {
+  on_device_ = on && vk_ && on_shared_;
+  if (vk_) vk_->defer_host_copy(on_device_);
+  return on_device_;
+}
+
+std::optional<raster::GpuProbeData> ProbeEngine::gpu_probes() const {
+  // Nothing stale: the host volume holds the values (and before the first update the tracer
+  // has no buffers).
+  if (!on_device_ || vk_->stale_probes() == 0) return std::nullopt;
+  return raster::GpuProbeData{&vk_->coefficient_buffer(), &vk_->moment_buffer()};
+}
+
+void ProbeEngine::read_back(probes::ProbeVolume& volume) {
+  if (vk_) vk_->read_back(volume);
 }
 
 void ProbeEngine::posed(const scene::Scene& scene, std::span<const int> moved) {

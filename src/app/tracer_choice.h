@@ -14,6 +14,7 @@
 #include "probes/probe_tracer.h"
 #include "probes/probe_updater.h"
 #include "probes/tracer_source.h"
+#include "raster/probe_import.h"
 #include "trace/tracer.h"
 
 namespace CLI {
@@ -36,6 +37,10 @@ enum class TracerKind { embree, vulkan };
 
 // Registers --tracer on cmd, writing into `choice` ("auto" by default).
 void add_tracer_option(CLI::App& cmd, std::string& choice);
+// Registers --probe-readback (render, xr): with the Vulkan tracer on the renderer's device, hand
+// the probes to the rasterizer through the CPU volume as the Embree tracer does (the path without
+// the GPU-resident hand-off), for comparison.
+void add_probe_readback_option(CLI::App& cmd, bool& readback);
 
 struct TracerDecision {
   TracerKind kind = TracerKind::embree;
@@ -67,8 +72,21 @@ class ProbeEngine {
   void posed(const scene::Scene& scene, std::span<const int> moved);
   TracerKind kind() const { return kind_; }
 
+  // The GPU-resident hand-off (DESIGN.md, "GPU probe tracing"): with the Vulkan tracer on the
+  // `shared` device, its averages stay there (trace_vk::VkProbeTracer::defer_host_copy) and the
+  // renderer converts them itself (gpu_probes()). Returns whether it is on: never for Embree or a
+  // tracer on a device of its own.
+  bool keep_probes_on_device(bool on);
+  // While the hand-off is on and the host volume is behind: the averages on the shared device.
+  std::optional<raster::GpuProbeData> gpu_probes() const;
+  // Brings the volume's coefficients and moments up to date where the hand-off left them on the
+  // GPU (for the CPU's readers: a full upload, a file, the stream); nothing otherwise.
+  void read_back(probes::ProbeVolume& volume);
+
  private:
   TracerKind kind_;
+  bool on_shared_ = false;  // the Vulkan tracer runs on the caller's device
+  bool on_device_ = false;  // keep_probes_on_device
   std::unique_ptr<trace::Tracer> tracer_;
   std::unique_ptr<probes::TracerSource> source_;
   std::unique_ptr<probes::ProbeTracer> cpu_;

@@ -62,7 +62,7 @@ void barrier_all(VkCommandBuffer cmd, std::span<const VkImage> images, VkImageLa
 
 ProbeTextures::ProbeTextures(const gpu::Device& device, const probes::ProbeVolume& volume,
                              int order)
-    : grid_(volume.grid()), order_(order == 0 ? volume.sh_order() : order) {
+    : device_(&device), grid_(volume.grid()), order_(order == 0 ? volume.sh_order() : order) {
   if (order < 0 || order > sh::kMaxOrder)
     throw std::invalid_argument("probe texture SH order must be 1..4 (0: the volume's), got " +
                                 std::to_string(order));
@@ -184,9 +184,8 @@ ProbeUploadStats ProbeTextures::record_upload(VkCommandBuffer cmd,
   return record(cmd, volume, dirty_probes, false);
 }
 
-ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeVolume& volume,
-                                       std::span<const std::uint32_t> dirty, bool everything) {
-  check_volume(volume);
+std::vector<ProbeRun> ProbeTextures::plan_runs(std::span<const std::uint32_t> dirty, bool everything,
+                                               ProbeUploadStats& stats) const {
   const glm::ivec3 counts = grid_.counts();
   const std::uint32_t total = grid_.probe_count();
   std::vector<ProbeRun> runs;
@@ -197,10 +196,18 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
     everything = !initialized_ || double(runs.size()) > full_upload_fraction_ * double(total) ||
                  (full_upload_fraction_ < 1.0 && 2 * n > total);
   }
-  ProbeUploadStats stats;
   stats.full = everything;
   if (everything) runs = {{0, total}};
   for (const ProbeRun& r : runs) stats.probes += r.count;
+  return runs;
+}
+
+ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeVolume& volume,
+                                       std::span<const std::uint32_t> dirty, bool everything) {
+  check_volume(volume);
+  const std::uint32_t total = grid_.probe_count();
+  ProbeUploadStats stats;
+  const std::vector<ProbeRun> runs = plan_runs(dirty, everything, stats);
   if (stats.probes == 0) return stats;
 
   // Staging layout: texture t's texels of the listed probes, in list order, at
@@ -224,7 +231,7 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
   if (record_uints_ > 0) {
     // After the texels: the header (whether any probe of the whole volume is relocated, so that
     // the shader skips reading the offsets when none is), then the listed probes' records in
-    // list order, one copy per run.
+    // list order.
     moment_scratch_.assign(kMomentHeaderUints + std::size_t(record_uints_) * n, 0u);
     for (std::uint32_t p = 0; p < total && moment_scratch_[0] == 0u; ++p)
       if (volume.offset(p) != glm::vec3(0.0f)) moment_scratch_[0] = 1u;
@@ -238,6 +245,44 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
     const VkDeviceSize bytes = 4ull * moment_scratch_.size();
     staging_.write(moment_scratch_.data(), bytes, texel_bytes);
     stats.bytes += bytes;
+  }
+  clamped_total_ += stats.clamps.overflowed + stats.clamps.not_finite;
+  record_copies(cmd, staging_.handle(), runs, stats.probes, stats);
+  return stats;
+}
+
+ProbeUploadStats ProbeTextures::import(gpu::CommandRunner& runner, const probes::ProbeVolume& volume,
+                                       const GpuProbeData& source,
+                                       std::span<const std::uint32_t> dirty_probes) {
+  check_volume(volume);
+  ProbeUploadStats stats;
+  stats.imported = true;
+  const std::vector<ProbeRun> runs = plan_runs(dirty_probes, false, stats);
+  if (stats.probes == 0) return stats;
+  std::vector<std::uint32_t> listed;
+  listed.reserve(stats.probes);
+  for (const ProbeRun& r : runs)
+    for (std::uint32_t p = r.first; p < r.first + r.count; ++p) listed.push_back(p);
+  if (!importer_) importer_ = std::make_unique<ProbeImporter>(*device_);
+  const StagingLayout layout{.count = stats.probes,
+                             .texture_count = texture_count(),
+                             .record_uints = record_uints_,
+                             .order = order_};
+  runner.run([&](VkCommandBuffer cmd) {
+    stats.bytes = importer_->record(cmd, volume, source, listed, layout);
+    record_copies(cmd, importer_->staging().handle(), runs, stats.probes, stats);
+  });
+  stats.clamps = importer_->clamps();
+  clamped_total_ += stats.clamps.overflowed + stats.clamps.not_finite;
+  return stats;
+}
+
+void ProbeTextures::record_copies(VkCommandBuffer cmd, VkBuffer source, std::span<const ProbeRun> runs,
+                                  std::uint32_t n, ProbeUploadStats& stats) {
+  const glm::ivec3 counts = grid_.counts();
+  const std::size_t n_tex = textures_.size();
+  const VkDeviceSize texel_bytes = kTexelBytes * n_tex * n;
+  if (record_uints_ > 0) {
     VkBufferMemoryBarrier before{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER};
     before.srcAccessMask = initialized_ ? VK_ACCESS_SHADER_READ_BIT : 0;
     before.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
@@ -254,8 +299,7 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
       copies.push_back({src, header_bytes + 4ull * record_uints_ * r.first, size});
       src += size;
     }
-    vkCmdCopyBuffer(cmd, staging_.handle(), moments_.handle(), std::uint32_t(copies.size()),
-                    copies.data());
+    vkCmdCopyBuffer(cmd, source, moments_.handle(), std::uint32_t(copies.size()), copies.data());
     stats.regions += std::uint32_t(copies.size());
     VkBufferMemoryBarrier after_copy = before;
     after_copy.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
@@ -263,7 +307,6 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
     vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, kReaderStages, 0, 0, nullptr, 1,
                          &after_copy, 0, nullptr);
   }
-  clamped_total_ += stats.clamps.overflowed + stats.clamps.not_finite;
 
   std::vector<VkImage> images;
   for (const Texture& tex : textures_) images.push_back(tex.image.get());
@@ -274,6 +317,7 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
               initialized_ ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_UNDEFINED,
               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, after, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
               VK_ACCESS_TRANSFER_WRITE_BIT);
+  const bool everything = runs.size() == 1 && runs[0].first == 0 && runs[0].count == grid_.probe_count();
   std::vector<VkBufferImageCopy> regions;
   for (std::size_t t = 0; t < n_tex; ++t) {
     regions.clear();
@@ -297,7 +341,7 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
         first_k += r.count;
       }
     }
-    vkCmdCopyBufferToImage(cmd, staging_.handle(), images[t], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+    vkCmdCopyBufferToImage(cmd, source, images[t], VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                            std::uint32_t(regions.size()), regions.data());
     stats.regions += std::uint32_t(regions.size());
   }
@@ -305,7 +349,6 @@ ProbeUploadStats ProbeTextures::record(VkCommandBuffer cmd, const probes::ProbeV
               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
               VK_ACCESS_TRANSFER_WRITE_BIT, kReaderStages, VK_ACCESS_SHADER_READ_BIT);
   initialized_ = true;
-  return stats;
 }
 
 }  // namespace ddish::raster

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -33,6 +34,7 @@
 #include "gpu/memory.h"
 #include "probes/probe_volume.h"
 #include "raster/probe_descriptor_set.h"
+#include "raster/probe_import.h"
 #include "raster/probe_slots.h"
 
 namespace ddish::gpu {
@@ -67,7 +69,8 @@ struct ProbeUploadStats {
   bool full = false;           // the whole volume was copied (first upload, or most was dirty)
   std::uint32_t probes = 0;    // probes packed and copied
   std::uint32_t regions = 0;   // buffer-to-image copy regions recorded
-  std::uint64_t bytes = 0;     // bytes staged
+  std::uint64_t bytes = 0;     // bytes staged by the host (an import: only its probe list)
+  bool imported = false;       // converted on the device from GPU data (import()), not packed on the CPU
   SlotClamps clamps;           // values fp16 could not hold, in this upload
 };
 
@@ -104,6 +107,14 @@ class ProbeTextures {
   ProbeUploadStats record_upload(VkCommandBuffer cmd, const probes::ProbeVolume& volume,
                                  std::span<const std::uint32_t> dirty_probes);
 
+  // The GPU-resident hand-off (probe_import.h): the same probes as upload() would copy (the
+  // same rule for going whole), their coefficients and moments converted on the device from
+  // `source`, which holds the volume's averages on this device, their states and offsets taken
+  // from `volume`. Waits. The textures and moment buffer then hold exactly what upload() of a
+  // volume with those averages would have put there.
+  ProbeUploadStats import(gpu::CommandRunner& runner, const probes::ProbeVolume& volume, const GpuProbeData& source,
+                          std::span<const std::uint32_t> dirty_probes);
+
   // Overrides kFullUploadFraction (0 uploads everything every time, >= 1 never goes whole
   // unless it must): for measuring, or for devices where copy regions cost differently.
   void set_full_upload_fraction(double fraction) { full_upload_fraction_ = fraction; }
@@ -131,8 +142,17 @@ class ProbeTextures {
 
   ProbeUploadStats record(VkCommandBuffer cmd, const probes::ProbeVolume& volume,
                           std::span<const std::uint32_t> dirty, bool everything);
+  // The row runs to copy for a dirty list (or the whole volume), filling stats.full and .probes.
+  std::vector<ProbeRun> plan_runs(std::span<const std::uint32_t> dirty, bool everything,
+                                  ProbeUploadStats& stats) const;
+  // Copies the runs' texels and visibility records (staging layout: texture after texture, then
+  // the moment header and the records, in run order) from `source` into the textures and the
+  // moment buffer, between barriers.
+  void record_copies(VkCommandBuffer cmd, VkBuffer source, std::span<const ProbeRun> runs, std::uint32_t n,
+                     ProbeUploadStats& stats);
   void check_volume(const probes::ProbeVolume& volume) const;
 
+  const gpu::Device* device_ = nullptr;
   probes::ProbeGrid grid_;
   int order_ = 2;
   ProbeGridUniform uniform_;
@@ -143,6 +163,7 @@ class ProbeTextures {
   int moment_res_ = 0;
   std::uint32_t record_uints_ = 0;  // uints per probe record (map and offset); 0 without moments
   std::vector<std::uint32_t> moment_scratch_;
+  std::unique_ptr<ProbeImporter> importer_;  // made by the first import()
   Sampler sampler_;
   OwnedDescriptorSet descriptors_;
   std::vector<std::uint16_t> texels_;  // packing scratch, kept to avoid reallocation

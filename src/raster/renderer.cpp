@@ -113,6 +113,11 @@ ProbeUploadStats Renderer::upload_probes(const probes::ProbeVolume& volume,
   return probe_textures_.upload(runner_, volume, dirty_probes);
 }
 
+ProbeUploadStats Renderer::import_probes(const probes::ProbeVolume& volume, const GpuProbeData& source,
+                                         std::span<const std::uint32_t> dirty_probes) {
+  return probe_textures_.import(runner_, volume, source, dirty_probes);
+}
+
 ProbeUploadStats Renderer::upload_probes(const probes::ProbeVolume& volume) {
   return probe_textures_.upload(runner_, volume);
 }

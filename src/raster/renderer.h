@@ -130,6 +130,10 @@ class Renderer {
   ProbeUploadStats upload_probes(const probes::ProbeVolume& volume,
                                  std::span<const std::uint32_t> dirty_probes);
   ProbeUploadStats upload_probes(const probes::ProbeVolume& volume);
+  // The same probes converted on the device from GPU-resident averages (ProbeTextures::import):
+  // the hand-off of a probe tracer on this renderer's device, with no CPU copy of the values.
+  ProbeUploadStats import_probes(const probes::ProbeVolume& volume, const GpuProbeData& source,
+                                 std::span<const std::uint32_t> dirty_probes);
 
   // Renders the scene as posed now from every view (all of one size) and reads the images back,
   // in batches of batch_size() views that share the frame's shadow maps. `request` may keep

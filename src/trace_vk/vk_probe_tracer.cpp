@@ -172,7 +172,46 @@ struct VkProbeTracer::Impl {
   std::uint64_t mirrored_frame = 0;
   int mirrored_moment_resolution = -1;
   std::uint64_t rays = 0;
+
+  // defer_host_copy: the probes updated on the GPU whose host values are not (sorted and
+  // unique after each update, so a run of hours keeps at most one entry a probe).
+  bool defer = false;
+  std::vector<std::uint32_t> stale;
+  void compact_stale() {
+    std::sort(stale.begin(), stale.end());
+    stale.erase(std::unique(stale.begin(), stale.end()), stale.end());
+  }
+  // Copies the GPU's averages of the stale probes of `volume` (the mirrored one) into it.
+  void copy_stale(probes::ProbeVolume& volume);
 };
+
+void VkProbeTracer::Impl::copy_stale(probes::ProbeVolume& volume) {
+  if (stale.empty()) return;
+  compact_stale();
+  const auto coeffs = std::size_t(volume.coefficient_count());
+  const auto map_texels = std::size_t(volume.moment_texels());
+  const VkDeviceSize coefficient_bytes = VkDeviceSize(volume.probe_count()) * coeffs * sizeof(glm::vec3);
+  const VkDeviceSize moment_bytes = VkDeviceSize(volume.probe_count()) * map_texels * sizeof(glm::vec2);
+  ensure(device, coefficients_readback, coefficient_bytes, kStorage, gpu::MemoryUse::readback);
+  ensure(device, moments_readback, moment_bytes, kStorage, gpu::MemoryUse::readback);
+  runner.run([&](VkCommandBuffer cmd) {
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT,
+                        VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+    gpu::copy_buffer(cmd, *coefficients, *coefficients_readback, coefficient_bytes);
+    if (moment_bytes > 0) gpu::copy_buffer(cmd, *moments, *moments_readback, moment_bytes);
+    gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                        VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+  });
+  const auto* gpu_coefficients = static_cast<const glm::vec3*>(coefficients_readback->mapped());
+  const auto* gpu_moments = static_cast<const glm::vec2*>(moments_readback->mapped());
+  for (std::uint32_t p : stale) {
+    const auto dst = volume.coefficients(p);
+    std::memcpy(dst.data(), gpu_coefficients + std::size_t(p) * coeffs, coeffs * sizeof(glm::vec3));
+    const auto m = volume.moments(p);
+    if (!m.empty()) std::memcpy(m.data(), gpu_moments + std::size_t(p) * map_texels, m.size_bytes());
+  }
+  stale.clear();
+}
 
 void VkProbeTracer::Impl::make_rt_pipeline() {
   const VkDevice d = device.handle();
@@ -360,6 +399,22 @@ const gpu::Buffer& VkProbeTracer::coefficient_buffer() const {
   return *impl_->coefficients;
 }
 
+const gpu::Buffer& VkProbeTracer::moment_buffer() const {
+  if (!impl_->moments) throw std::logic_error("the GPU probe tracer has not updated a volume yet");
+  return *impl_->moments;
+}
+
+void VkProbeTracer::defer_host_copy(bool defer) { impl_->defer = defer; }
+
+void VkProbeTracer::read_back(probes::ProbeVolume& volume) const {
+  if (impl_->stale.empty()) return;
+  if (impl_->mirrored != &volume)
+    throw std::logic_error("the GPU probe tracer reads back into the volume it updates");
+  impl_->copy_stale(volume);
+}
+
+std::size_t VkProbeTracer::stale_probes() const { return impl_->stale.size(); }
+
 std::uint64_t VkProbeTracer::rays_traced() const { return impl_->rays; }
 
 std::vector<Result> VkProbeTracer::Impl::trace(const std::vector<ProbeWork>& items, const std::vector<Blend>& blend_items,
@@ -422,6 +477,16 @@ probes::UpdateStats VkProbeTracer::update(probes::ProbeVolume& volume, std::span
   const bool in_sync = im.mirrored == &volume && im.mirrored_frame == volume.frame() && im.coefficients &&
                        im.coefficients->size() == coefficient_bytes &&
                        im.mirrored_moment_resolution == volume.moment_resolution();
+  // Deferred copies of the volume the GPU mirrored go to it first: the copy up must not
+  // overwrite the GPU's newer values with stale ones.
+  if (!in_sync && im.mirrored != &volume && !im.stale.empty())
+    throw std::logic_error("the GPU probe tracer holds deferred averages of another volume: read_back() first");
+  if (!in_sync) {
+    if (im.mirrored == &volume && im.coefficients && im.coefficients->size() == coefficient_bytes &&
+        im.mirrored_moment_resolution == volume.moment_resolution())
+      im.copy_stale(volume);
+    im.stale.clear();
+  }
   Impl::ensure(im.device, im.coefficients, coefficient_bytes, kStorage, gpu::MemoryUse::device_local);
   Impl::ensure(im.device, im.moments, moment_bytes, kStorage, gpu::MemoryUse::device_local);
   if (!in_sync) {
@@ -532,21 +597,8 @@ probes::UpdateStats VkProbeTracer::update(probes::ProbeVolume& volume, std::span
 
     make_work(work, items, blends, 0);
     const std::vector<Result> results = im.trace(items, blends, tp, pp);
-    // The updated averages back to the host volume, for its CPU consumers.
-    Impl::ensure(im.device, im.coefficients_readback, coefficient_bytes, kStorage, gpu::MemoryUse::readback);
-    Impl::ensure(im.device, im.moments_readback, moment_bytes, kStorage, gpu::MemoryUse::readback);
-    im.runner.run([&](VkCommandBuffer cmd) {
-      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-      gpu::copy_buffer(cmd, *im.coefficients, *im.coefficients_readback, coefficient_bytes);
-      if (moment_bytes > 0) gpu::copy_buffer(cmd, *im.moments, *im.moments_readback, moment_bytes);
-      gpu::memory_barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                          VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-    });
-
-    // The host volume follows what the GPU did: classification, counts, the blended averages.
-    const auto* gpu_coefficients = static_cast<const glm::vec3*>(im.coefficients_readback->mapped());
-    const auto* gpu_moments = static_cast<const glm::vec2*>(im.moments_readback->mapped());
+    // The host volume follows what the GPU did: classification, counts, and the blended
+    // averages of the updated probes, copied back now or, deferred, by read_back().
     for (std::size_t w = 0; w < work.size(); ++w) {
       const std::uint32_t p = work[w];
       const Result& r = results[w];
@@ -567,15 +619,16 @@ probes::UpdateStats VkProbeTracer::update(probes::ProbeVolume& volume, std::span
       state.updates += 1;
       state.samples += n;
       state.age = 0;
-      const auto dst = volume.coefficients(p);
-      std::memcpy(dst.data(), gpu_coefficients + std::size_t(p) * coeffs, coeffs * sizeof(glm::vec3));
-      const auto m = volume.moments(p);
-      if (!m.empty()) std::memcpy(m.data(), gpu_moments + std::size_t(p) * texels, m.size_bytes());
+      im.stale.push_back(p);
     }
   }
   im.mirrored = &volume;
   im.mirrored_frame = volume.frame();
   im.mirrored_moment_resolution = volume.moment_resolution();
+  if (im.defer)
+    im.compact_stale();
+  else
+    im.copy_stale(volume);
   im.rays += stats.rays;
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;

@@ -58,6 +58,20 @@ class VkProbeTracer final : public probes::ProbeUpdater {
   // The running average on the GPU: probe after probe, coefficient after coefficient, RGB as
   // three floats (probes::ProbeVolume's layout), for the volume of the last update.
   const gpu::Buffer& coefficient_buffer() const;
+  // Its distance moments: probe after probe, texel after texel, (mean d, mean d^2) over the
+  // range as two floats (a 16-byte placeholder for a volume without moments).
+  const gpu::Buffer& moment_buffer() const;
+
+  // Off (the default): every update copies the updated probes' coefficients and moments into the
+  // host volume. On: they stay on the GPU and the host volume's values of the probes updated
+  // since the last read_back() are stale; nothing else may write them meanwhile, and update()
+  // of another volume throws std::logic_error until they are read back.
+  void defer_host_copy(bool defer);
+  // Brings the volume's coefficients and moments up to date with the GPU's (a whole-buffer copy,
+  // then the stale probes'), when some are stale; `volume` is the one the tracer updates.
+  void read_back(probes::ProbeVolume& volume) const;
+  // Probes whose host values are stale (deferred copies since the last read_back()).
+  std::size_t stale_probes() const;
 
   // Rays cast so far (path, bounce and shadow rays).
   std::uint64_t rays_traced() const;

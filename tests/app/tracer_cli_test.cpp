@@ -1,13 +1,19 @@
 // `--tracer auto|embree|vulkan`: auto never takes the Vulkan tracer on a CPU device (so the
 // suite traces with Embree on lavapipe), vulkan traces the probes on lavapipe 25 under the
 // validation layer (with distance moments and relocation; a textured, alpha-masked scene, an
-// environment map and a skinned mesh that bends from frame to frame too), and on a device without ray tracing `--tracer vulkan` is one
+// environment map and a skinned mesh that bends from frame to frame too; `render` hands the traced
+// probes to the rasterizer on the GPU, or with --probe-readback through the CPU, with the same
+// image), and on a device without ray tracing `--tracer vulkan` is one
 // error line and exit 2.
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "cli_runner.h"
 #include "metrics/image.h"
@@ -53,10 +59,39 @@ TEST_F(TracerCli, VulkanTracesTheProbesWithValidationClean) {
                                 "--probe-relocation", "DDISH_VALIDATION=1");
   ASSERT_EQ(moved.code, 0) << moved.err;
   EXPECT_EQ(moved.err.find("VUID"), std::string::npos) << moved.err;
-  const cli::Result render = run("render " + cli::cornell() + " --width 32 --height 32 --probe-samples 16 --warmup-ms 0 "
-                                 "--grid 3,3,3 --tracer vulkan --out " + path("out"));
+  // The renderer shares the tracer's device: the traced probes reach it on the GPU (converted
+  // there, none uploaded), and the image is the one of the read-back path, byte for byte.
+  const std::string frames = "render " + cli::cornell() + " --width 32 --height 32 --frames 2 --probe-samples 16 "
+                             "--warmup-ms 0 --grid 3,3,3 --tracer vulkan ";
+  const cli::Result render = run(frames + "--timings " + path("gpu.json") + " --out " + path("out"), "DDISH_VALIDATION=1");
   ASSERT_EQ(render.code, 0) << render.err;
   EXPECT_NE(render.err.find("render: probe tracer vulkan on "), std::string::npos) << render.err;
+  EXPECT_NE(render.err.find("render: traced probes stay on the GPU"), std::string::npos) << render.err;
+  EXPECT_EQ(render.err.find("VUID"), std::string::npos) << render.err;
+  const cli::Result readback = run(frames + "--probe-readback --timings " + path("cpu.json") + " --out " + path("cpu"));
+  ASSERT_EQ(readback.code, 0) << readback.err;
+  EXPECT_EQ(readback.err.find("traced probes stay on the GPU"), std::string::npos) << readback.err;
+  const auto frame_counts = [&](const std::string& file) {
+    std::ifstream in(dir_ / file);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    std::vector<std::pair<int, int>> counts;
+    for (const auto& f : j["frames"]) counts.emplace_back(f["probes_uploaded"].get<int>(), f["probes_imported"].get<int>());
+    return counts;
+  };
+  const auto on_gpu = frame_counts("gpu.json"), through_cpu = frame_counts("cpu.json");
+  ASSERT_EQ(on_gpu.size(), 2u);
+  ASSERT_EQ(through_cpu.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(on_gpu[k].first, 0) << "frame " << k;  // no probe uploaded from the CPU
+    EXPECT_GT(on_gpu[k].second, 0) << "frame " << k;
+    EXPECT_EQ(through_cpu[k], std::make_pair(on_gpu[k].second, 0)) << "frame " << k;
+  }
+  const auto bytes = [&](const std::string& file) {
+    std::ifstream in(dir_ / file, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_FALSE(bytes("out/frame_0001.png").empty());
+  EXPECT_EQ(bytes("out/frame_0001.png"), bytes("cpu/frame_0001.png"));
   const cli::Result textured = run("probes " + cli::quote(std::string(DDISH_SOURCE_DIR) + "/scenes/blend_panels_lit.gltf") +
                                    " --grid 2,2,2 --probe-samples 16 --tracer vulkan", "DDISH_VALIDATION=1");
   ASSERT_EQ(textured.code, 0) << textured.err;
