@@ -50,7 +50,7 @@ Pipeline make_graphics_pipeline(const gpu::Device& device, const GraphicsPipelin
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;
   raster.depthBiasEnable = desc.depth_bias ? VK_TRUE : VK_FALSE;
-  // Shadow maps: a small constant bias; the receiver's normal offset in forward_main.glsl
+  // Shadow maps: a small constant bias; the receiver's normal offset in surface_lighting.glsl
   // (larger at grazing light) removes acne. No slope-scaled bias: it pushes a caster seen at
   // grazing light back by 1.5x its depth slope (~5x a texel at 12 degrees), so light leaked
   // where such a caster meets the surface it shadows (the Breakfast room's back wall, lit by
