@@ -134,8 +134,9 @@ VisibilityPass::VisibilityPass(const gpu::Device& device, const VisibilityPassDe
   p.depth_write = false;
   shade_pipeline_ = make_graphics_pipeline(device, p);
 
-  instances_ = gpu::Buffer(device, sizeof(InstanceData) * std::max<std::size_t>(1, meshes.mesh_count()),
-                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, gpu::MemoryUse::upload);
+  // One instance for now; record() grows it to the scene's instances.
+  instances_ = gpu::Buffer(device, sizeof(InstanceData), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                           gpu::MemoryUse::upload);
   set_.write_storage_buffer(2, meshes.index_buffer().descriptor());
   set_.write_storage_buffer(3, meshes.vertex_buffer().descriptor());
   set_.write_storage_buffer(4, materials.uniforms().descriptor());
