@@ -7,7 +7,7 @@
 //   raster_views [SCENE] [--views 1,6,12,48] [--size 420x560] [--frames 3] [--msaa 0] [--chunk 0]
 //                [--method per-view|multiview|layered] [--cull on|off|both] [--only-view K]
 //                [--per-chunk] [--shading full|trivial|both] [--anisotropy N]
-//                [--prepass auto|on|off|both]
+//                [--prepass auto|on|off|both] [--shading-pass auto|forward|visibility|both]
 //                [--probe-visibility R]
 //
 // --probe-visibility R gives the volume R x R distance-moment maps (0, the default: none), so the
@@ -20,7 +20,10 @@
 // raster + fill floor of the machine, which the full shading's time is compared against; both
 // times each configuration with either shader (the CSV's shading column). --prepass is
 // RendererOptions::depth_prepass for the full shading (auto: where the device has post-depth
-// coverage; both: full shading with and without it, the CSV's prepass column). --anisotropy is
+// coverage; both: full shading with and without it, the CSV's prepass column). --shading-pass is
+// RendererOptions::shading_pass for the full shading (auto: the renderer's choice; both:
+// forward and visibility, the CSV's shading_pass column; the trivial floor is always one
+// forward pass, raster/shading_pass.h). --anisotropy is
 // RendererOptions::anisotropy (0 automatic: off on lavapipe; 8 reproduces the old default).
 //
 // --chunk K renders a frame of N views as render() calls of at most K views each (summed): on a
@@ -55,6 +58,7 @@
 #include "raster/anisotropy.h"
 #include "raster/renderer.h"
 #include "raster/shading.h"
+#include "raster/shading_pass.h"
 #include "scene/gltf_loader.h"
 #include "scene/scene.h"
 
@@ -110,6 +114,7 @@ int main(int argc, char** argv) try {
   int anisotropy = 0;
   int only_view = -1;
   std::string prepass_choice = "auto";
+  std::string pass_choice = "auto";
   int visibility = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -129,6 +134,7 @@ int main(int argc, char** argv) try {
     else if (a == "--shading") shading_choice = next();
     else if (a == "--anisotropy") anisotropy = std::stoi(next());
     else if (a == "--prepass") prepass_choice = next();
+    else if (a == "--shading-pass") pass_choice = next();
     else if (a == "--probe-visibility") visibility = std::stoi(next());
     else path = a;
   }
@@ -146,6 +152,11 @@ int main(int argc, char** argv) try {
   else if (prepass_choice == "off") prepasses = {false};
   else if (prepass_choice == "both") prepasses = {true, false};
   else throw std::invalid_argument("--prepass must be auto, on, off or both, not " + prepass_choice);
+  std::vector<std::optional<raster::ShadingPass>> passes;
+  if (pass_choice == "auto") passes = {std::nullopt};
+  else if (pass_choice == "both") passes = {raster::ShadingPass::forward, raster::ShadingPass::visibility};
+  else if (const auto p = raster::parse_shading_pass(pass_choice)) passes = {*p};
+  else throw std::invalid_argument("--shading-pass must be auto, forward, visibility or both, not " + pass_choice);
   raster::check_anisotropy(anisotropy);
   const scene::Scene s = scene::load_scene(path);
   gpu::Context context({.application_name = "raster_views"});
@@ -157,7 +168,7 @@ int main(int argc, char** argv) try {
               "anisotropy option %d\n", path.c_str(),
               [&] { std::size_t t = 0; for (const auto& m : s.meshes) t += m.triangle_count(); return t; }(),
               width, height, device.info().name.c_str(), frames, anisotropy);
-  std::printf("method,cull,shading,prepass,views,passes,frame_ms,ms_per_view,forward_gpu_ms,record_ms,"
+  std::printf("method,cull,shading,prepass,shading_pass,views,passes,frame_ms,ms_per_view,forward_gpu_ms,record_ms,"
               "cpu_ms,triangles,draws\n");
   // Every configuration renders each frame in turn (paired runs): on a shared machine the load
   // changes from minute to minute, and interleaving spreads it evenly over the configurations.
@@ -166,6 +177,7 @@ int main(int argc, char** argv) try {
     bool cull;
     raster::Shading shading;
     bool prepass;
+    raster::ShadingPass pass;
     std::unique_ptr<raster::Renderer> renderer;
     std::vector<double> frame, gpu, record, cpu;
     raster::FrameStats last;
@@ -175,22 +187,28 @@ int main(int argc, char** argv) try {
        {raster::ViewMethod::per_view, raster::ViewMethod::multiview, raster::ViewMethod::layered})
     for (bool cull : {false, true})
       for (raster::Shading shading : shadings)
-        for (std::optional<bool> prepass : prepasses) {
-          if (!only_method.empty() && only_method != raster::to_string(method)) continue;
-          if (cull_choice != "both" && cull != (cull_choice == "on")) continue;
-          // The trivial floor never has a prepass: one row of it.
-          if (shading == raster::Shading::trivial && prepass != prepasses.front()) continue;
-          raster::RendererOptions options;
-          options.msaa = msaa;
-          options.view_method = method;
-          options.cull = cull;
-          options.anisotropy = anisotropy;
-          options.shading = shading;
-          options.depth_prepass = prepass;
-          auto renderer = std::make_unique<raster::Renderer>(device, s, volume, options);
-          const bool on = renderer->depth_prepass();
-          configs.push_back({method, cull, shading, on, std::move(renderer), {}, {}, {}, {}, {}});
-        }
+        for (std::optional<bool> prepass : prepasses)
+          for (std::optional<raster::ShadingPass> pass : passes) {
+            if (!only_method.empty() && only_method != raster::to_string(method)) continue;
+            if (cull_choice != "both" && cull != (cull_choice == "on")) continue;
+            // The trivial floor never has a prepass and is always the forward pass: one row.
+            if (shading == raster::Shading::trivial && (prepass != prepasses.front() || pass != passes.front()))
+              continue;
+            // The visibility pass has no prepass: one row of it.
+            if (pass == raster::ShadingPass::visibility && prepass != prepasses.front()) continue;
+            raster::RendererOptions options;
+            options.msaa = msaa;
+            options.view_method = method;
+            options.cull = cull;
+            options.anisotropy = anisotropy;
+            options.shading = shading;
+            options.depth_prepass = prepass;
+            options.shading_pass = pass;
+            auto renderer = std::make_unique<raster::Renderer>(device, s, volume, options);
+            const bool on = renderer->depth_prepass();
+            configs.push_back({method, cull, shading, on, renderer->shading_pass(), std::move(renderer), {}, {}, {},
+                               {}, {}});
+          }
   for (int n : counts) {
     std::vector<scene::View> all_views = rig(s, n, width, height);
     if (only_view >= 0) all_views = {all_views.at(static_cast<std::size_t>(only_view))};
@@ -235,9 +253,10 @@ int main(int argc, char** argv) try {
       }
     for (const Config& c : configs) {
       const double ms = median(c.frame);
-      std::printf("%s,%s,%s,%s,%d,%u,%.2f,%.2f,%.2f,%.2f,%.2f,%llu,%llu\n",
+      std::printf("%s,%s,%s,%s,%s,%d,%u,%.2f,%.2f,%.2f,%.2f,%.2f,%llu,%llu\n",
                   std::string(raster::to_string(c.method)).c_str(), c.cull ? "on" : "off",
-                  std::string(raster::to_string(c.shading)).c_str(), c.prepass ? "on" : "off", n,
+                  std::string(raster::to_string(c.shading)).c_str(), c.prepass ? "on" : "off",
+                  std::string(raster::to_string(c.pass)).c_str(), n,
                   c.last.forward_passes, ms, ms / n, median(c.gpu), median(c.record), median(c.cpu),
                   static_cast<unsigned long long>(c.last.cull.triangles_drawn),
                   static_cast<unsigned long long>(c.last.cull.draws));

@@ -1,20 +1,13 @@
 // The forward pass's material inputs, shared by the shading (forward_main.glsl) and the depth
 // prepass of alpha-masked materials (forward_depth_masked.frag), so that both decide a masked
-// pixel's coverage from the same base colour: the feature switches (specialization constants
-// 0..5, raster/shader_variant.h), the material set and its textures, the UV sets and COLOR_0.
+// pixel's coverage from the same base colour: the feature switches (forward_variant.glsl), the
+// material set and its textures, the UV sets and COLOR_0.
 #ifndef DDISH_FORWARD_MATERIAL_GLSL
 #define DDISH_FORWARD_MATERIAL_GLSL
 
 #define MATERIAL_SET 3  // after set 0 (frame), PROBE_SET 1 and BRDF_SET 2
 
-// Variants chosen from scene::SceneFeatures (raster/shader_variant.h): a scene pays only for
-// what it has; the compiler removes the dead branches.
-layout(constant_id = 0) const bool kDirectLights = true;
-layout(constant_id = 1) const bool kShadows = true;
-layout(constant_id = 2) const bool kTextures = true;
-layout(constant_id = 3) const bool kSpecularProbes = true;
-layout(constant_id = 4) const bool kProbes = true;
-layout(constant_id = 5) const bool kEmission = true;
+#include "forward_variant.glsl"
 
 layout(set = MATERIAL_SET, binding = 0) uniform MaterialData {
   vec4 base_color;

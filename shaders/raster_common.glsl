@@ -7,13 +7,15 @@
 #extension GL_GOOGLE_include_directive : enable
 
 // Per draw: the instance's object-to-world transform, its normal matrix (columns xyz; w of
-// column 0 is the tangent handedness sign, -1 for mirroring transforms), and which view or
-// shadow-map layer the draw is for.
+// column 0 is the tangent handedness sign, -1 for mirroring transforms), which view or
+// shadow-map layer the draw is for, and what the visibility pass writes per sample.
 layout(push_constant) uniform DrawConstants {
   mat4 model;
   vec4 normal_matrix[3];
   uint view_index;   // forward: the pass's first view in views[]; shadow: shadow_layers[] index
   uint material;     // unused by the shaders, kept for debugging captures
+  uint instance;        // the visibility pass: the scene instance drawn
+  uint first_triangle;  // the visibility pass: the draw's first triangle in the index buffer
 } pc;
 
 struct ViewData {

@@ -5,7 +5,7 @@
 //            + (F0 dfg.x + dfg.y) * probe_specular(p, reflect(-v, n), roughness),
 //   dfg = brdf_dfg(NoV, roughness),
 // which matches the path tracer's BSDF (src/trace/bsdf.cpp) under the probes' radiance; E is the
-// dielectric layer's directional albedo (forward_main.glsl reads it from the tracer's table).
+// dielectric layer's directional albedo (surface_lighting.glsl reads it from the tracer's table).
 // probe_lighting(p, n, reflect(-v, n), roughness, E, L) returns both probe terms from one
 // interpolation (half the fetches); probe_interpolate + probe_sh_irradiance/probe_sh_specular
 // are the pieces, for shaders that want the interpolated SH themselves.

@@ -4,7 +4,8 @@
 //                    [--frames N] [--every[=N]] [--loop] [--fps F] [--time T] [--out DIR] [--timings FILE]
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
 //                    [--probe-samples N] [--hysteresis A] [--bounces N] [--msaa 1|4]
-//                    [--sample-shading] [--depth-prepass auto|on|off] [--view-batch N]
+//                    [--sample-shading] [--depth-prepass auto|on|off]
+//                    [--shading-pass auto|forward|visibility] [--view-batch N]
 //                    [--anisotropy N] [--tonemap linear|filmic]
 //                    [--no-indirect] [--sky R,G,B] [--exposure EV]
 //                    [--schedule uniform|visibility] [--budget-ms MS] [--max-age N]
@@ -89,6 +90,7 @@
 #include "probes/volume_file.h"
 #include "raster/anisotropy.h"
 #include "raster/renderer.h"
+#include "raster/shading_pass.h"
 #include "raster/tonemap.h"
 #include "scene/features.h"
 #include "scene/gltf_loader.h"
@@ -122,6 +124,7 @@ struct RenderArgs {
   std::uint32_t msaa = 0;
   bool sample_shading = false;
   std::string depth_prepass = "auto";  // raster::RendererOptions::depth_prepass
+  std::string shading_pass = "auto";   // raster::RendererOptions::shading_pass
   int anisotropy = raster::kAutomaticAnisotropy;
   std::uint32_t view_batch = 0;  // raster::RendererOptions::batch_views
   std::uint32_t max_gpu_memory_mb = 0;  // raster::RendererOptions::memory_limit_bytes, in MiB
@@ -261,6 +264,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   ro.msaa = a.msaa;
   ro.sample_shading = a.sample_shading;
   if (a.depth_prepass != "auto") ro.depth_prepass = a.depth_prepass == "on";
+  if (a.shading_pass != "auto") ro.shading_pass = raster::parse_shading_pass(a.shading_pass);
   ro.anisotropy = a.anisotropy;
   ro.batch_views = a.view_batch;
   ro.memory_limit_bytes = std::uint64_t{a.max_gpu_memory_mb} << 20;
@@ -509,6 +513,13 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
                   "draw depth first, then light only the nearest surface of each pixel: auto is on "
                   "where the device has VK_EXT_post_depth_coverage (lavapipe has it); the same image")
       ->check(CLI::IsMember({"auto", "on", "off"}))
+      ->capture_default_str();
+  cmd->add_option("--shading-pass", a.shading_pass,
+                  "forward: shade triangles as they are drawn; visibility: draw instance and triangle ids "
+                  "first, then shade each pixel once (the same image, cheaper on CPU devices); auto is "
+                  "visibility where the device has non-uniform texture indexing (Mesa 25 lavapipe) and "
+                  "neither --sample-shading nor --depth-prepass on|off is given, else forward")
+      ->check(CLI::IsMember({"auto", "forward", "visibility"}))
       ->capture_default_str();
   cmd->add_option("--max-gpu-memory", a.max_gpu_memory_mb,
                   "MiB the frame's render target and readback may take (batches shrink to fit; a view "

@@ -49,6 +49,7 @@ DeviceFeatures choose_features(const FeatureChain& has, FeatureChain& enable) {
   want(h.multiDrawIndirect, e.multiDrawIndirect, f.multi_draw_indirect);
   want(h.drawIndirectFirstInstance, e.drawIndirectFirstInstance, f.draw_indirect_first_instance);
   want(h.sampleRateShading, e.sampleRateShading, f.sample_rate_shading);
+  want(h.geometryShader, e.geometryShader, f.geometry_shader);
   want(h.independentBlend, e.independentBlend, f.independent_blend);
   want(h.textureCompressionBC, e.textureCompressionBC, f.texture_compression_bc);
   want(h.shaderInt16, e.shaderInt16, f.shader_int16);
@@ -60,6 +61,8 @@ DeviceFeatures choose_features(const FeatureChain& has, FeatureChain& enable) {
   want(has.v13.synchronization2, enable.v13.synchronization2, f.synchronization2);
   want(has.v13.dynamicRendering, enable.v13.dynamicRendering, f.dynamic_rendering);
   want(has.v13.maintenance4, enable.v13.maintenance4, f.maintenance4);
+  want(has.v12.shaderSampledImageArrayNonUniformIndexing,
+       enable.v12.shaderSampledImageArrayNonUniformIndexing, f.sampled_image_non_uniform_indexing);
   return f;
 }
 

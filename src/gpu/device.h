@@ -65,6 +65,13 @@ struct DeviceFeatures {
   // passed the depth test (gl_SampleMaskIn), what the forward pass's depth prepass needs
   // (raster/forward_pass.h). Lavapipe has it.
   bool post_depth_coverage = false;
+  // shaderSampledImageArrayNonUniformIndexing (core 1.2): a shader may pick a texture from an
+  // array per pixel, what the visibility pass's material reads need (raster/visibility_pass.h).
+  // Mesa 22's lavapipe lacks it, Mesa 25's has it.
+  bool sampled_image_non_uniform_indexing = false;
+  // geometryShader: ddish draws no geometry shaders, but a fragment shader that reads
+  // gl_PrimitiveID (the visibility pass's ids) declares the Geometry capability, which needs it.
+  bool geometry_shader = false;
 };
 
 class Device {

@@ -1,5 +1,7 @@
 #include "raster/draw_list.h"
 
+#include <algorithm>
+
 #include "raster/clusters.h"
 #include "raster/frustum_cull.h"
 #include "raster/gpu_meshes.h"
@@ -84,6 +86,24 @@ void build_draws(const scene::Scene& scene, const GpuMeshes& meshes,
       stats.triangles_drawn += c.index_count / 3;
     }
   }
+}
+
+std::vector<std::size_t> instances_by_material(const scene::Scene& scene, const GpuMeshes& meshes,
+                                               bool blended) {
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const int mesh = scene.instances[i].mesh;
+    if (mesh < 0 || static_cast<std::size_t>(mesh) >= meshes.mesh_count()) continue;
+    const bool blend = scene.material_of(scene.meshes[static_cast<std::size_t>(mesh)]).alpha_mode ==
+                       scene::AlphaMode::Blend;
+    if (blend == blended) order.push_back(i);
+  }
+  auto material_of = [&](std::size_t i) {
+    return scene.meshes[static_cast<std::size_t>(scene.instances[i].mesh)].material;
+  };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return material_of(a) < material_of(b); });
+  return order;
 }
 
 }  // namespace ddish::raster

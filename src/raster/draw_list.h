@@ -46,4 +46,9 @@ void build_draws(const scene::Scene& scene, const GpuMeshes& meshes,
                  std::span<const std::size_t> instances, const PassViews& views, bool cull,
                  std::vector<DrawItem>& out, CullStats& stats);
 
+// The instances with a mesh, by material (so that a pass binds each material's set once);
+// blended = false: the opaque and masked ones, true: the BLEND ones (the transparent pass).
+std::vector<std::size_t> instances_by_material(const scene::Scene& scene, const GpuMeshes& meshes,
+                                               bool blended);
+
 }  // namespace ddish::raster

@@ -40,26 +40,6 @@ std::string fragment_shader(const ForwardPassDesc& desc) {
   return "forward_sh" + std::to_string(desc.sh_order) + (desc.depth_prepass ? "_prepassed" : "") + ".frag";
 }
 
-// Instances with a mesh, by material, so that each material's set is bound once per pass;
-// blended = false: the opaque and masked ones, true: the BLEND ones (the transparent pass).
-std::vector<std::size_t> material_order(const scene::Scene& scene, const GpuMeshes& meshes,
-                                        bool blended) {
-  std::vector<std::size_t> order;
-  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-    const int mesh = scene.instances[i].mesh;
-    if (mesh < 0 || static_cast<std::size_t>(mesh) >= meshes.mesh_count()) continue;
-    const bool blend = scene.material_of(scene.meshes[static_cast<std::size_t>(mesh)]).alpha_mode ==
-                       scene::AlphaMode::Blend;
-    if (blend == blended) order.push_back(i);
-  }
-  auto material_of = [&](std::size_t i) {
-    return scene.meshes[static_cast<std::size_t>(scene.instances[i].mesh)].material;
-  };
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return material_of(a) < material_of(b); });
-  return order;
-}
-
 // The transparent instances back to front as seen from `eye`: by the distance to the centre of
 // each instance's world-space bounds (per instance and primitive, not per triangle: the
 // triangles of one mesh blend in index order).
@@ -254,8 +234,8 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
   passes_ = 0;
   stats_ = {};
   const auto n = static_cast<std::uint32_t>(views.view_proj.size());
-  const std::vector<std::size_t> order = material_order(scene, meshes, false);
-  const std::vector<std::size_t> blended = material_order(scene, meshes, true);
+  const std::vector<std::size_t> order = instances_by_material(scene, meshes, false);
+  const std::vector<std::size_t> blended = instances_by_material(scene, meshes, true);
   auto pass_views = [&](std::uint32_t first, std::uint32_t count) {
     return PassViews{views.view_proj.subspan(first, count), views.eyes.subspan(first, count)};
   };
@@ -331,6 +311,50 @@ void ForwardPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const G
       ++passes_;
       break;
     }
+  }
+}
+
+void ForwardPass::record_transparent(VkCommandBuffer cmd, const scene::Scene& scene,
+                                     const GpuMeshes& meshes, const MaterialTextures& materials,
+                                     std::array<VkDescriptorSet, 3> sets, const RenderTarget& target,
+                                     const ForwardViews& views) {
+  passes_ = 0;
+  stats_ = {};
+  const std::vector<std::size_t> blended = instances_by_material(scene, meshes, true);
+  if (blended.empty()) return;
+  const VkPipeline pipeline = pipeline_for(ViewMethod::per_view, 1, kBlend);
+  for (std::uint32_t v = 0; v < views.view_proj.size(); ++v) {
+    std::vector<std::size_t> sorted = blended;
+    sort_back_to_front(scene, views.eyes[v], sorted);
+    blend_items_.clear();
+    build_draws(scene, meshes, sorted, PassViews{views.view_proj.subspan(v, 1), views.eyes.subspan(v, 1)},
+                views.cull, blend_items_, stats_);
+    if (blend_items_.empty()) continue;
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = target.color_view(v);
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = target.depth_view(v);
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    const std::uint32_t w = target.desc().width, h = target.desc().height;
+    info.renderArea = {{0, 0}, {w, h}};
+    info.layerCount = 1;
+    info.colorAttachmentCount = 1;
+    info.pColorAttachments = &color;
+    info.pDepthAttachment = &depth;
+    vkCmdBeginRendering(cmd, &info);
+    set_viewport(cmd, w, h);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 3, sets.data(), 0, nullptr);
+    meshes.bind(cmd);
+    draw_items(cmd, scene, materials, blend_items_, v, 0);
+    vkCmdEndRendering(cmd);
+    ++passes_;
   }
 }
 

@@ -87,6 +87,14 @@ class ForwardPass {
               const MaterialTextures& materials, std::array<VkDescriptorSet, 3> sets,
               const RenderTarget& target, const ForwardViews& views, const glm::vec4& clear);
 
+  // The transparent pass alone, after another pass drew the opaque and masked instances into
+  // the target (raster/visibility_pass.h) and left its colour and depth: each view's BLEND
+  // instances, back to front from its eye, one pass per view whatever the view method (a view
+  // without any draws none). passes_recorded() and cull_stats() then count these passes.
+  void record_transparent(VkCommandBuffer cmd, const scene::Scene& scene, const GpuMeshes& meshes,
+                          const MaterialTextures& materials, std::array<VkDescriptorSet, 3> sets,
+                          const RenderTarget& target, const ForwardViews& views);
+
   // Builds the pipeline `method` records with (for multiview, that of a full block), so that a
   // device lacking what it needs fails here, before any recording: GpuError for layered
   // without shaderOutputLayer.

@@ -85,9 +85,9 @@ GpuMeshes::GpuMeshes(const gpu::Device& device, gpu::CommandRunner& runner,
   if (indices.empty()) indices.push_back(0);
   const VkDeviceSize vertex_bytes = vertices.size() * sizeof(Vertex);
   const VkDeviceSize index_bytes = indices.size() * sizeof(std::uint32_t);
-  vertices_ = gpu::Buffer(device, vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+  vertices_ = gpu::Buffer(device, vertex_bytes, VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                           gpu::MemoryUse::device_local);
-  indices_ = gpu::Buffer(device, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+  indices_ = gpu::Buffer(device, index_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          gpu::MemoryUse::device_local);
   gpu::upload(device, runner, vertices_, vertices.data(), vertex_bytes);
   gpu::upload(device, runner, indices_, indices.data(), index_bytes);

@@ -67,6 +67,10 @@ class GpuMeshes {
 
   const MeshRange& range(int mesh) const { return ranges_.at(static_cast<std::size_t>(mesh)); }
   std::size_t mesh_count() const { return ranges_.size(); }
+  // The buffers themselves, also storage buffers: the visibility pass reads the triangles of
+  // the pixels it shades from them (raster/visibility_pass.h).
+  const gpu::Buffer& vertex_buffer() const { return vertices_; }
+  const gpu::Buffer& index_buffer() const { return indices_; }
 
   // Vertex input of the pipelines that draw these buffers: all six attributes, or the
   // position alone (depth-only passes).

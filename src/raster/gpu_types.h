@@ -9,14 +9,19 @@
 
 namespace ddish::raster {
 
-// Push constants of every draw (forward and shadow): 120 bytes, within the 128 every device has.
+// Push constants of every draw (forward, shadow and visibility): 128 bytes, the most every
+// device has.
 struct DrawConstants {
   glm::mat4 model{1.0f};
   glm::vec4 normal_matrix[3]{};  // columns of inverse-transpose(mat3(model)); [0].w: handedness
   std::uint32_t view_index = 0;  // forward: views[]; shadow: shadow_layers[]
   std::uint32_t material = 0;
+  // The visibility pass (raster/visibility_pass.h): the scene instance drawn, and the index of
+  // the draw's first triangle in GpuMeshes' index buffer (pushed with every draw).
+  std::uint32_t instance = 0;
+  std::uint32_t first_triangle = 0;
 };
-static_assert(sizeof(DrawConstants) == 120);
+static_assert(sizeof(DrawConstants) == 128);
 
 // Builds the per-instance constants: the normal matrix is computed once per instance, not per
 // vertex. A mirroring transform (det < 0) flips the tangent handedness, as glTF requires.

@@ -9,12 +9,17 @@
 namespace ddish::raster {
 
 Pipeline make_graphics_pipeline(const gpu::Device& device, const GraphicsPipelineDesc& desc) {
+  // Every constant is 32 bits (VkBool32 or uint32_t): the bools, then the integers.
+  std::vector<std::uint32_t> values(desc.fragment_constants.begin(), desc.fragment_constants.end());
   std::vector<VkSpecializationMapEntry> entries;
   for (std::uint32_t i = 0; i < desc.fragment_constants.size(); ++i)
-    entries.push_back({i, i * static_cast<std::uint32_t>(sizeof(VkBool32)), sizeof(VkBool32)});
+    entries.push_back({i, i * 4u, 4u});
+  for (const auto& [id, value] : desc.fragment_int_constants) {
+    entries.push_back({id, static_cast<std::uint32_t>(values.size()) * 4u, 4u});
+    values.push_back(value);
+  }
   VkSpecializationInfo spec{static_cast<std::uint32_t>(entries.size()), entries.data(),
-                            desc.fragment_constants.size() * sizeof(VkBool32),
-                            desc.fragment_constants.data()};
+                            values.size() * sizeof(std::uint32_t), values.data()};
 
   std::vector<VkPipelineShaderStageCreateInfo> stages;
   VkPipelineShaderStageCreateInfo vs{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -34,10 +39,13 @@ Pipeline make_graphics_pipeline(const gpu::Device& device, const GraphicsPipelin
   const VkVertexInputBindingDescription binding = GpuMeshes::binding();
   const auto attributes = GpuMeshes::attributes();
   VkPipelineVertexInputStateCreateInfo input{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-  input.vertexBindingDescriptionCount = 1;
-  input.pVertexBindingDescriptions = &binding;
-  input.vertexAttributeDescriptionCount = desc.position_only ? 1u : static_cast<std::uint32_t>(attributes.size());
-  input.pVertexAttributeDescriptions = attributes.data();
+  if (!desc.fullscreen) {
+    input.vertexBindingDescriptionCount = 1;
+    input.pVertexBindingDescriptions = &binding;
+    input.vertexAttributeDescriptionCount =
+        desc.position_only ? 1u : static_cast<std::uint32_t>(attributes.size());
+    input.pVertexAttributeDescriptions = attributes.data();
+  }
 
   VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
   assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
@@ -50,7 +58,7 @@ Pipeline make_graphics_pipeline(const gpu::Device& device, const GraphicsPipelin
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;
   raster.depthBiasEnable = desc.depth_bias ? VK_TRUE : VK_FALSE;
-  // Shadow maps: a small constant bias; the receiver's normal offset in forward_main.glsl
+  // Shadow maps: a small constant bias; the receiver's normal offset in surface_lighting.glsl
   // (larger at grazing light) removes acne. No slope-scaled bias: it pushes a caster seen at
   // grazing light back by 1.5x its depth slope (~5x a texel at 12 degrees), so light leaked
   // where such a caster meets the surface it shadows (the Breakfast room's back wall, lit by
@@ -65,7 +73,7 @@ Pipeline make_graphics_pipeline(const gpu::Device& device, const GraphicsPipelin
     multisample.minSampleShading = 1.0f;
   }
   VkPipelineDepthStencilStateCreateInfo depth{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-  depth.depthTestEnable = VK_TRUE;
+  depth.depthTestEnable = desc.fullscreen ? VK_FALSE : VK_TRUE;
   depth.depthWriteEnable = desc.depth_write && !desc.alpha_blend ? VK_TRUE : VK_FALSE;
   depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
   VkPipelineColorBlendAttachmentState blend_attachment{};

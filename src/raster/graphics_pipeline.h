@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -26,6 +27,8 @@ struct GraphicsPipelineDesc {
   VkShaderModule vertex = VK_NULL_HANDLE;
   VkShaderModule fragment = VK_NULL_HANDLE;  // none: depth only
   std::vector<VkBool32> fragment_constants;  // specialization constants 0..n-1 (bools)
+  // Further 32-bit integer specialization constants of the fragment stage: (constant id, value).
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> fragment_int_constants;
   bool position_only = false;                // vertex input: location 0 only
   VkFormat color_format = VK_FORMAT_UNDEFINED;
   VkFormat depth_format = VK_FORMAT_UNDEFINED;
@@ -40,6 +43,8 @@ struct GraphicsPipelineDesc {
   bool depth_write = true;
   // false: no colour written (a depth prepass drawn in the colour pass).
   bool color_write = true;
+  // No vertex input, no depth test: one full-screen triangle (fullscreen.vert).
+  bool fullscreen = false;
 };
 
 Pipeline make_graphics_pipeline(const gpu::Device& device, const GraphicsPipelineDesc& desc);

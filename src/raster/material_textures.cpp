@@ -185,7 +185,9 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
   const VkDeviceSize align = std::max<VkDeviceSize>(device.limits().minUniformBufferOffsetAlignment,
                                                     sizeof(MaterialData));
   const VkDeviceSize stride = (sizeof(MaterialData) + align - 1) / align * align;
-  uniforms_ = gpu::Buffer(device, stride * count, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+  stride_ = stride;
+  uniforms_ = gpu::Buffer(device, stride * count,
+                          VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                           gpu::MemoryUse::upload);
 
   std::array<VkDescriptorPoolSize, 2> sizes{{{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, count},
@@ -218,6 +220,7 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
       if (bound) bits |= 1u << i;
       images[i] = {sampler_for(slot), image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     }
+    slot_images_.insert(slot_images_.end(), images.begin(), images.end());
     data.alpha = {mat.alpha_cutoff, mat.alpha_mode == scene::AlphaMode::Mask ? 1.0f : 0.0f,
                   static_cast<float>(bits), mat.alpha_mode == scene::AlphaMode::Blend ? 1.0f : 0.0f};
     for (std::uint32_t i = 0; i < kSlots; ++i) {  // KHR_texture_transform and the UV set

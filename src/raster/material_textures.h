@@ -40,6 +40,13 @@ class MaterialTextures {
   std::size_t texture_images() const { return images_.size(); }
   // The sampler's maxAnisotropy as resolved for the device; 1: anisotropic filtering off.
   float max_anisotropy() const { return max_anisotropy_; }
+  // For passes that pick the material per pixel (raster/visibility_pass.h): every material's
+  // five slots (the sets' bindings 1..5) in set order, the default material last; and the
+  // uniform blocks, also a storage buffer, one MaterialData every uniform_stride() bytes.
+  const std::vector<VkDescriptorImageInfo>& slot_images() const { return slot_images_; }
+  const gpu::Buffer& uniforms() const { return uniforms_; }
+  VkDeviceSize uniform_stride() const { return stride_; }
+  std::size_t material_count() const { return sets_.size(); }
 
   // A texture uploaded to an RGBA8 image of `format` with all mips (public for tests). Throws
   // GpuError naming the format feature the device lacks for mip generation.
@@ -64,6 +71,8 @@ class MaterialTextures {
   gpu::DeviceHandle<VkDescriptorSetLayout, vkDestroyDescriptorSetLayout> layout_;
   gpu::DeviceHandle<VkDescriptorPool, vkDestroyDescriptorPool> pool_;
   std::vector<VkDescriptorSet> sets_;  // scene materials, then the default material
+  std::vector<VkDescriptorImageInfo> slot_images_;
+  VkDeviceSize stride_ = 0;
 };
 
 }  // namespace ddish::raster

@@ -68,6 +68,23 @@ ForwardPassDesc forward_desc(const gpu::Device& device, const RendererOptions& o
   return d;
 }
 
+// RendererOptions::shading_pass resolved: throws GpuError when visibility is asked for where
+// it cannot run.
+bool use_visibility(const gpu::Device& device, const RendererOptions& o, const MaterialTextures& materials) {
+  // The trivial floor stays the forward pass: it is what the full shading is measured against.
+  if (o.shading != Shading::full) return false;
+  const std::optional<std::string> why = VisibilityPass::unsupported(device, materials);
+  // Sample shading and the depth prepass are the forward pass's: asking for either picks it.
+  if (!o.shading_pass) return !why && !o.sample_shading && !o.depth_prepass;
+  if (*o.shading_pass == ShadingPass::forward) return false;
+  if (o.sample_shading)
+    throw gpu::GpuError("the visibility pass shades each pixel once; sample shading needs the forward pass");
+  if (o.depth_prepass.value_or(false))
+    throw gpu::GpuError("the depth prepass belongs to the forward pass, not the visibility pass");
+  if (why) throw gpu::GpuError(*why);
+  return true;
+}
+
 }  // namespace
 
 Renderer::Renderer(gpu::Device& device, const scene::Scene& scene, const probes::ProbeVolume& volume,
@@ -102,6 +119,12 @@ Renderer::Renderer(gpu::Device& device, const scene::Scene& scene, const probes:
                             materials_.layout()},
                            samples_, volume.sh_order()));
   forward_->prepare(options.view_method);
+  if (use_visibility(device, options, materials_)) {
+    const ForwardPassDesc& f = forward_->desc();
+    visibility_ = std::make_unique<VisibilityPass>(
+        device, VisibilityPassDesc{f.set_layouts, f.sh_order, f.samples, f.variant}, meshes_, materials_);
+    visibility_->prepare(options.view_method);
+  }
   if (device.info().timestamps_supported()) timer_.emplace(device, kRanges);
   if (scene.environment_map) background_.emplace(device, runner_, *scene.environment_map);
   // The probe set must hold data before the first frame binds it.
@@ -157,9 +180,14 @@ void Renderer::record_frame(VkCommandBuffer cmd, const scene::Scene& scene,
   // A map is composited behind the drawn pixels after the resolve (their alpha is coverage);
   // a uniform sky is the clear colour.
   const glm::vec4 clear = background_ ? glm::vec4(0.0f) : glm::vec4(scene.environment(), 1.0f);
-  forward_->record(cmd, scene, meshes_, materials_,
-                   {frame_.set(), probe_textures_.set(), brdf_tables_.set()}, *target_,
-                   {view_proj, eyes, options_.view_method, options_.cull}, clear);
+  const std::array<VkDescriptorSet, 3> sets{frame_.set(), probe_textures_.set(), brdf_tables_.set()};
+  const ForwardViews forward_views{view_proj, eyes, options_.view_method, options_.cull};
+  if (visibility_) {
+    visibility_->record(cmd, scene, meshes_, materials_, sets, *target_, forward_views, clear);
+    forward_->record_transparent(cmd, scene, meshes_, materials_, sets, *target_, forward_views);
+  } else {
+    forward_->record(cmd, scene, meshes_, materials_, sets, *target_, forward_views, clear);
+  }
   if (timer_) timer_->end(cmd, kForwardRange);
   target_->end_frame(cmd);
 
@@ -193,8 +221,10 @@ bool Renderer::shadows_current(const scene::Scene& scene,
 }
 
 std::uint64_t Renderer::view_bytes(std::uint32_t width, std::uint32_t height) const {
-  // MSAA colour (RGBA16F) and depth (D32) samples, the resolve image, the HDR and display readbacks.
-  return std::uint64_t{width} * height * (std::uint64_t{samples_} * (8 + 4) + 8 + 8 + 4) + pass_bytes_;
+  // MSAA colour (RGBA16F) and depth (D32) samples, the visibility pass's ids (two uints a
+  // sample), the resolve image, the HDR and display readbacks.
+  const std::uint64_t sample_bytes = 8 + 4 + (visibility_ ? 8 : 0);
+  return std::uint64_t{width} * height * (std::uint64_t{samples_} * sample_bytes + 8 + 8 + 4) + pass_bytes_;
 }
 
 std::uint32_t Renderer::fit_memory(std::uint32_t width, std::uint32_t height, std::uint32_t views,
@@ -329,8 +359,13 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
       for (const scene::Instance& inst : scene.instances) shadow_transforms_.push_back(inst.transform);
       shadow_layers = 0;  // the later batches read the maps the first one drew
     }
+    // With the visibility pass, the forward pass recorded the transparent passes alone.
     out.stats.forward_passes += forward_->passes_recorded();
     out.stats.cull += forward_->cull_stats();
+    if (visibility_) {
+      out.stats.forward_passes += visibility_->passes_recorded();
+      out.stats.cull += visibility_->cull_stats();
+    }
     out.stats.tonemap_passes += 1;
     if (timer_) {
       const std::vector<double> ms = timer_->all_milliseconds();

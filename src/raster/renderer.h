@@ -31,9 +31,11 @@
 #include "raster/render_target.h"
 #include "raster/shadow_layout.h"
 #include "raster/shading.h"
+#include "raster/shading_pass.h"
 #include "raster/shadow_maps.h"
 #include "raster/tonemap.h"
 #include "raster/view_method.h"
+#include "raster/visibility_pass.h"
 #include "scene/features.h"
 
 namespace ddish::gpu {
@@ -75,6 +77,11 @@ struct RendererOptions {
   // Full shading after a depth prepass (raster/forward_pass.h): unset, wherever the device
   // has VK_EXT_post_depth_coverage; true there only (GpuError elsewhere); false, never.
   std::optional<bool> depth_prepass;
+  // Which pass shades (raster/shading_pass.h): unset, the visibility pass wherever the device
+  // can run it (VisibilityPass::unsupported), the shading is full and neither sample shading
+  // nor depth_prepass is asked for (both belong to the forward pass), else the forward pass;
+  // visibility where it cannot run, or with either of those: GpuError.
+  std::optional<ShadingPass> shading_pass;
   // Views drawn per submission into one reused target: 0 picks the most whose target and
   // readback fit kBatchTargetBytes (at least one; a multiple of a multiview pass). The
   // device memory of a frame then stops growing with the views (48 views of 420x560 at
@@ -151,7 +158,9 @@ class Renderer {
   float anisotropy() const { return materials_.max_anisotropy(); }
   int sh_order() const { return forward_->desc().sh_order; }
   // Whether the forward pass shades after a depth prepass (RendererOptions::depth_prepass).
-  bool depth_prepass() const { return forward_->desc().depth_prepass; }
+  bool depth_prepass() const { return !visibility_ && forward_->desc().depth_prepass; }
+  // Which pass shades (RendererOptions::shading_pass as resolved for this device).
+  ShadingPass shading_pass() const { return visibility_ ? ShadingPass::visibility : ShadingPass::forward; }
 
  private:
   void ensure_target(std::uint32_t width, std::uint32_t height, std::uint32_t views);
@@ -188,6 +197,7 @@ class Renderer {
   ProbeTextures probe_textures_;
   BrdfTables brdf_tables_;
   std::unique_ptr<ForwardPass> forward_;
+  std::unique_ptr<VisibilityPass> visibility_;  // the shading pass when it is the visibility pass
   Tonemapper tonemapper_;
   std::optional<EnvironmentBackground> background_;  // the scene's environment map, if any
   std::optional<gpu::TimestampQueries> timer_;

@@ -1,8 +1,8 @@
 // Which forward-shader features a scene needs, chosen from scene::SceneFeatures through the
-// scene's RenderPlan (scene/features.h) and passed to forward_main.glsl as specialization
-// constants 0..5, so a scene without glossy materials runs no specular-probe code, one without
-// punctual lights neither evaluates lights nor renders shadow maps, one without textures
-// samples none.
+// scene's RenderPlan (scene/features.h) and passed to the shaders (forward_variant.glsl) as
+// specialization constants 0..5, so a scene without glossy materials runs no specular-probe
+// code, one without punctual lights neither evaluates lights nor renders shadow maps, one
+// without textures samples none.
 #pragma once
 
 #include <vector>

@@ -10,7 +10,6 @@
 
 #include "../gpu/gpu_test.h"
 #include "gpu/error.h"
-#include "probes/probe_grid.h"
 #include "probes/probe_volume.h"
 #include "raster/renderer.h"
 #include "raster_scenes.h"
@@ -22,43 +21,6 @@ namespace {
 using gpu::test::GpuTest;
 
 class DepthPrepassTest : public GpuTest {};
-
-scene::Material masked(const glm::vec3& base, float alpha) {
-  scene::Material m = make_material(base, 0.0f, 0.6f);
-  m.base_color.a = alpha;
-  m.alpha_mode = scene::AlphaMode::Mask;
-  m.alpha_cutoff = 0.5f;
-  m.double_sided = true;
-  return m;
-}
-
-// A ground under a sphere, two masked quads above it (one below its cutoff: cut out, one above:
-// kept), a blended quad, a spot light and probes with a constant and a linear SH term.
-scene::Scene overdraw_scene() {
-  scene::Scene s = sphere_over_ground(0.4f);
-  add_instance(s, ground_quad(0.4f), masked({0.2f, 0.6f, 0.2f}, 0.3f), {0.0f, 1.4f, 0.0f});
-  add_instance(s, ground_quad(0.4f), masked({0.2f, 0.2f, 0.7f}, 0.9f), {0.5f, 1.2f, 0.5f});
-  scene::Material glass = make_material({0.9f, 0.8f, 0.3f}, 0.0f, 0.2f);
-  glass.base_color.a = 0.5f;
-  glass.alpha_mode = scene::AlphaMode::Blend;
-  add_instance(s, ground_quad(0.3f), glass, {-0.5f, 1.0f, 0.4f});
-  scene::Light spot;
-  spot.name = "spot";
-  spot.type = scene::LightType::Spot;
-  spot.intensity = 10.0f;
-  add_light(s, spot, {0.3f, 2.5f, 0.2f}, {0.0f, -1.0f, 0.0f});
-  s.sidecar.environment = {0.0625f, 0.125f, 0.25f};
-  return s;
-}
-
-probes::ProbeVolume lit_volume(const scene::Scene& s) {
-  probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {3, 3, 3}), 2);
-  sh::ShRgb sh(2);
-  sh[0] = glm::vec3(0.8f, 1.0f, 1.2f);
-  sh[1] = glm::vec3(0.3f, 0.2f, 0.1f);
-  for (std::uint32_t i = 0; i < volume.probe_count(); ++i) volume.set_sh(i, sh);
-  return volume;
-}
 
 TEST_F(DepthPrepassTest, SamePixelsWithAndWithout) {
   if (!device().features().post_depth_coverage) GTEST_SKIP() << "no VK_EXT_post_depth_coverage";
@@ -91,7 +53,11 @@ TEST_F(DepthPrepassTest, AutomaticWhereTheDeviceHasPostDepthCoverage) {
   const scene::Scene s = overdraw_scene();
   const probes::ProbeVolume volume = lit_volume(s);
   const bool has = device().features().post_depth_coverage;
-  EXPECT_EQ(Renderer(device(), s, volume, {}).depth_prepass(), has);
+  // The prepass belongs to the forward pass, which shades by default only where the visibility
+  // pass cannot (raster/shading_pass.h).
+  EXPECT_EQ(Renderer(device(), s, volume, {.shading_pass = ShadingPass::forward}).depth_prepass(), has);
+  const Renderer automatic(device(), s, volume, {});
+  EXPECT_EQ(automatic.depth_prepass(), has && automatic.shading_pass() == ShadingPass::forward);
   // The trivial floor is one pass whatever is asked.
   EXPECT_FALSE(Renderer(device(), s, volume, {.shading = Shading::trivial}).depth_prepass());
   if (!has) {

@@ -92,6 +92,9 @@ FrameOutput render_with(gpu::Device& device, const scene::Scene& s, const probes
   o.msaa = 4;
   o.view_method = method;
   o.cull = cull;
+  // The forward pass's recording is what these tests pin (the visibility pass records its
+  // geometry per view or layered: visibility_pass_test.cpp).
+  o.shading_pass = ShadingPass::forward;
   Renderer renderer(device, s, volume, o);
   return renderer.render(s, views);
 }

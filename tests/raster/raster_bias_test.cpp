@@ -7,7 +7,7 @@
 //    highlight is much narrower than a pixel, so a point sample near its peak overshoots the
 //    footprint's average many times (or misses it): one teapot pixel read 183 against the
 //    reference's 20, and that pixel alone was 99 % of the image's squared linear error (RMSE
-//    1.114; 0.098 without it). forward_main.glsl widens the punctual lights' GGX lobe by the
+//    1.114; 0.098 without it). surface_lighting.glsl widens the punctual lights' GGX lobe by the
 //    screen-space variance of the normal (Tokuyoshi and Kaplanyan 2021).
 // 2. Light leaking where a caster seen at grazing light meets the surface it shadows: the
 //    shadow pass's slope-scaled depth bias pushed such casters back by several texels

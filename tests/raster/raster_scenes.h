@@ -9,7 +9,10 @@
 
 #include <glm/glm.hpp>
 
+#include "probes/probe_grid.h"
+#include "probes/probe_volume.h"
 #include "scene/scene.h"
+#include "sh/sh_rgb.h"
 
 namespace ddish::raster::test {
 
@@ -148,6 +151,45 @@ inline void add_light(scene::Scene& s, scene::Light light, const glm::vec3& posi
   light.node = static_cast<int>(s.nodes.size()) - 1;
   s.lights.push_back(light);
   s.pose(s.time);
+}
+
+// A double-sided alpha-masked material of `base` with alpha `alpha` and cutoff 0.5.
+inline scene::Material masked_material(const glm::vec3& base, float alpha) {
+  scene::Material m = make_material(base, 0.0f, 0.6f);
+  m.base_color.a = alpha;
+  m.alpha_mode = scene::AlphaMode::Mask;
+  m.alpha_cutoff = 0.5f;
+  m.double_sided = true;
+  return m;
+}
+
+// A ground under a sphere (overdraw), two masked quads above it (one below its cutoff: cut
+// out, one above: kept), a blended quad and a spot light; lit_volume adds probes with a
+// constant and a linear SH term.
+inline scene::Scene overdraw_scene() {
+  scene::Scene s = sphere_over_ground(0.4f);
+  add_instance(s, ground_quad(0.4f), masked_material({0.2f, 0.6f, 0.2f}, 0.3f), {0.0f, 1.4f, 0.0f});
+  add_instance(s, ground_quad(0.4f), masked_material({0.2f, 0.2f, 0.7f}, 0.9f), {0.5f, 1.2f, 0.5f});
+  scene::Material glass = make_material({0.9f, 0.8f, 0.3f}, 0.0f, 0.2f);
+  glass.base_color.a = 0.5f;
+  glass.alpha_mode = scene::AlphaMode::Blend;
+  add_instance(s, ground_quad(0.3f), glass, {-0.5f, 1.0f, 0.4f});
+  scene::Light spot;
+  spot.name = "spot";
+  spot.type = scene::LightType::Spot;
+  spot.intensity = 10.0f;
+  add_light(s, spot, {0.3f, 2.5f, 0.2f}, {0.0f, -1.0f, 0.0f});
+  s.sidecar.environment = {0.0625f, 0.125f, 0.25f};
+  return s;
+}
+
+inline probes::ProbeVolume lit_volume(const scene::Scene& s) {
+  probes::ProbeVolume volume(probes::ProbeGrid(s.bounds(), {3, 3, 3}), 2);
+  sh::ShRgb sh(2);
+  sh[0] = glm::vec3(0.8f, 1.0f, 1.2f);
+  sh[1] = glm::vec3(0.3f, 0.2f, 0.1f);
+  for (std::uint32_t i = 0; i < volume.probe_count(); ++i) volume.set_sh(i, sh);
+  return volume;
 }
 
 }  // namespace ddish::raster::test

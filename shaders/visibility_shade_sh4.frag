@@ -1,0 +1,5 @@
+// Visibility pass shading with L4 probes, single-sampled (visibility_shade.glsl).
+#version 460
+#extension GL_GOOGLE_include_directive : enable
+#define PROBE_SH_ORDER 4
+#include "visibility_shade.glsl"

@@ -1,0 +1,6 @@
+// Visibility pass shading with L4 probes, multisampled ids (visibility_shade.glsl).
+#version 460
+#extension GL_GOOGLE_include_directive : enable
+#define PROBE_SH_ORDER 4
+#define VISIBILITY_MULTISAMPLED 1
+#include "visibility_shade.glsl"

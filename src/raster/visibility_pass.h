@@ -1,0 +1,128 @@
+// The visibility pass (RendererOptions::shading_pass = visibility, raster/shading_pass.h): the
+// opaque and alpha-masked instances of every view are drawn once into depth and an id image
+// that holds, per sample, the scene instance and the triangle it sees (visibility.frag;
+// masked materials discard as the forward shading does, visibility_masked.frag). Then one
+// full-screen triangle per view shades each pixel once (visibility_shade.glsl): it reads the
+// triangles of its samples back from the scene's vertex and index buffers, evaluates the
+// material (textures picked per pixel from one array, so the device needs non-uniform
+// sampled-image indexing) and lights it exactly as the forward shader does, and writes the
+// mean over its samples, so the resolve is unchanged. glTF BLEND instances then go through the
+// forward pass's transparent pass (ForwardPass::record_transparent) over this depth.
+//
+// Why: lavapipe shades fragments in 4x4 blocks with a coverage mask, so the forward pass's
+// small triangles leave most lanes idle, and every layer of overdraw that survives the early
+// depth test is shaded. Here the geometry pass costs about the trivial-shader floor (1.01-1.04x
+// of it measured with the shading left out) and the shading runs on full blocks of visible
+// pixels. Process CPU of full shading / trivial floor (bench/raster_views --shading-pass both,
+// 420x560, MSAA 4, per-view, culling, one run at load 8-9): Sponza 3.03x against the forward
+// pass's 3.78x (1 view), 2.43x against 3.19x (4 views); Breakfast room 2.74x against 3.14x,
+// 2.67x against 3.14x. What keeps it above 2x is the second shading of pixels whose samples
+// hold two triangles: shading the first alone measured 1.9x, but with Sponza's pixel-sized
+// triangles most 4x4 blocks hold such a pixel, and a block shades twice when one of its
+// pixels needs it. (Merging a pixel's triangles that lie on one smooth surface did not pay:
+// the test costs about what it saves.)
+//
+// Recording: per-view and layered as ViewMethod says; multiview draws the geometry per view
+// (lavapipe's multiview is not trustworthy, raster/view_method.h, and the shading is per view
+// anyway). The target's depth is stored (the transparent pass tests against it).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
+
+#include "gpu/buffer.h"
+#include "gpu/image.h"
+#include "gpu/shader.h"
+#include "raster/draw_list.h"
+#include "raster/forward_pass.h"
+#include "raster/graphics_pipeline.h"
+#include "raster/probe_descriptor_set.h"
+#include "raster/shader_variant.h"
+#include "raster/view_method.h"
+
+namespace ddish::gpu {
+class Device;
+}
+
+namespace ddish::scene {
+struct Scene;
+}
+
+namespace ddish::raster {
+
+class GpuMeshes;
+class MaterialTextures;
+class RenderTarget;
+
+struct VisibilityPassDesc {
+  std::array<VkDescriptorSetLayout, 4> set_layouts{};  // frame, probe, BRDF, material (SetIndex)
+  int sh_order = 2;  // selects visibility_shade_sh<order>[_ms].frag
+  std::uint32_t samples = 1;
+  ShaderVariant variant;
+};
+
+class VisibilityPass {
+ public:
+  // Empty when the device can run the pass for these materials; otherwise why not (one line).
+  static std::optional<std::string> unsupported(const gpu::Device& device,
+                                                const MaterialTextures& materials);
+
+  // Throws GpuError where unsupported() says why, and for an SH order outside 1..4. The
+  // meshes and materials must outlive the pass (their buffers are bound once).
+  VisibilityPass(const gpu::Device& device, const VisibilityPassDesc& desc, const GpuMeshes& meshes,
+                 const MaterialTextures& materials);
+
+  // Builds the geometry pipelines `method` records with: GpuError for layered without
+  // shaderOutputLayer.
+  void prepare(ViewMethod method);
+
+  // Records the views' opaque and masked instances into the target's layers (view i -> layer
+  // i): ids and depth, then the shading over the colour cleared to `clear`. sets: the frame,
+  // probe and BRDF sets (SetIndex 0..2).
+  void record(VkCommandBuffer cmd, const scene::Scene& scene, const GpuMeshes& meshes,
+              const MaterialTextures& materials, std::array<VkDescriptorSet, 3> sets,
+              const RenderTarget& target, const ForwardViews& views, const glm::vec4& clear);
+
+  std::uint32_t passes_recorded() const { return passes_; }
+  const CullStats& cull_stats() const { return stats_; }
+
+  static constexpr VkFormat kIdFormat = VK_FORMAT_R32G32_UINT;
+
+ private:
+  VkPipeline geometry_pipeline(bool layered, bool masked);
+  void ensure_ids(const RenderTarget& target);
+  void write_instances(const scene::Scene& scene, const GpuMeshes& meshes,
+                       const MaterialTextures& materials);
+  void draw_geometry(VkCommandBuffer cmd, const scene::Scene& scene, const MaterialTextures& materials,
+                     bool layered, std::uint32_t view_index, std::uint32_t first_instance);
+  void begin_geometry(VkCommandBuffer cmd, const RenderTarget& target, VkImageView ids,
+                      VkImageView depth, std::uint32_t layers) const;
+
+  const gpu::Device& device_;
+  VisibilityPassDesc desc_;
+  PipelineLayout geometry_layout_, shade_layout_;
+  gpu::ShaderModule vertex_, opaque_, masked_, fullscreen_, shade_;
+  std::optional<gpu::ShaderModule> layered_vertex_;  // loaded on first use
+  bool layered_supported_ = false;
+  // [layered][masked], each made on first use.
+  Pipeline geometry_[2][2];
+  Pipeline shade_pipeline_;
+  OwnedDescriptorSet set_;  // set 3 of the shading
+  Sampler sampler_;         // the ids are read with texelFetch; a combined sampler needs one
+  gpu::Buffer instances_;
+  gpu::Image ids_;
+  std::vector<gpu::ImageView> id_layers_;
+  gpu::ImageView id_all_;  // every layer, as a 2D array (also for one view)
+  std::uint32_t passes_ = 0;
+  CullStats stats_;
+  std::vector<std::size_t> order_;  // instances by material, reused
+  std::vector<DrawItem> items_;
+};
+
+}  // namespace ddish::raster
