@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <stdexcept>
 #include <string>
 
 #include "gpu/commands.h"
@@ -97,15 +98,56 @@ gpu::Image MaterialTextures::upload_texture(const gpu::Device& device, gpu::Comm
   return image;
 }
 
+gpu::Image MaterialTextures::upload_mip_chain(const gpu::Device& device, gpu::CommandRunner& runner,
+                                              const std::vector<MipLevel>& chain, VkFormat format) {
+  if (chain.empty()) throw std::invalid_argument("a mip chain needs at least one level");
+  const std::uint32_t w = chain.front().width, h = chain.front().height;
+  const auto mips = static_cast<std::uint32_t>(chain.size());
+  gpu::Image image(device, {.width = w, .height = h, .format = format,
+                            .usage = VK_IMAGE_USAGE_SAMPLED_BIT, .mip_levels = mips});
+  VkDeviceSize bytes = 0;
+  std::vector<VkBufferImageCopy> copies(mips);
+  for (std::uint32_t m = 0; m < mips; ++m) {
+    const MipLevel& level = chain[m];
+    if (level.width != std::max(w >> m, 1u) || level.height != std::max(h >> m, 1u) ||
+        level.rgba8.size() != std::size_t{level.width} * level.height * 4)
+      throw std::invalid_argument("mip level " + std::to_string(m) + " is not half the level above");
+    copies[m].bufferOffset = bytes;
+    copies[m].imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
+    copies[m].imageExtent = {level.width, level.height, 1};
+    bytes += level.rgba8.size();
+  }
+  gpu::Buffer staging(device, bytes, 0, gpu::MemoryUse::upload);
+  for (std::uint32_t m = 0; m < mips; ++m)
+    staging.write(chain[m].rgba8.data(), chain[m].rgba8.size(), copies[m].bufferOffset);
+  runner.run([&](VkCommandBuffer cmd) {
+    gpu::image_barrier(cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdCopyBufferToImage(cmd, staging.handle(), image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                           mips, copies.data());
+    gpu::image_barrier(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                       VK_ACCESS_SHADER_READ_BIT);
+  });
+  return image;
+}
+
 const gpu::Image& MaterialTextures::image_for(const gpu::Device& device, gpu::CommandRunner& runner,
-                                              const scene::Scene& scene, int texture, bool srgb) {
-  const auto key = std::make_pair(texture, srgb);
+                                              const scene::Scene& scene, int texture, Kind kind) {
+  const auto key = std::make_pair(texture, kind);
   auto it = images_.find(key);
   if (it == images_.end()) {
-    const VkFormat format = srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
-    it = images_.emplace(key, upload_texture(device, runner,
-                                             scene.textures.at(static_cast<std::size_t>(texture)),
-                                             format)).first;
+    const scene::Texture& tex = scene.textures.at(static_cast<std::size_t>(texture));
+    if (kind == Kind::MetallicRoughness && tex.width >= 1 && tex.height >= 1 &&
+        tex.rgba8.size() == std::size_t(tex.width) * std::size_t(tex.height) * 4) {
+      it = images_.emplace(key, upload_mip_chain(device, runner, roughness_mip_chain(tex, kRoughnessMipPower),
+                                                 VK_FORMAT_R8G8B8A8_UNORM)).first;
+    } else {  // a texture that failed to decode goes the blit path, which reads it as white
+      const VkFormat format = kind == Kind::Srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM;
+      it = images_.emplace(key, upload_texture(device, runner, tex, format)).first;
+    }
   }
   return it->second;
 }
@@ -199,12 +241,12 @@ MaterialTextures::MaterialTextures(const gpu::Device& device, gpu::CommandRunner
 
   for (std::uint32_t m = 0; m < count; ++m) {
     const scene::Material& mat = materials[m];
-    const std::array<std::pair<const scene::TextureSlot*, bool>, kSlots> slots{{
-        {&mat.base_color_texture, true},
-        {&mat.metallic_roughness_texture, false},
-        {&mat.normal_texture, false},
-        {&mat.occlusion_texture, false},
-        {&mat.emissive_texture, true},
+    const std::array<std::pair<const scene::TextureSlot*, Kind>, kSlots> slots{{
+        {&mat.base_color_texture, Kind::Srgb},
+        {&mat.metallic_roughness_texture, Kind::MetallicRoughness},
+        {&mat.normal_texture, Kind::Linear},
+        {&mat.occlusion_texture, Kind::Linear},
+        {&mat.emissive_texture, Kind::Srgb},
     }};
     MaterialData data;
     data.base_color = mat.base_color;

@@ -3,6 +3,8 @@
 // set per material (lavapipe has no descriptor indexing, so a material is bound per draw): a
 // uniform block of its factors and texture transforms, and five combined image samplers (base
 // colour and emissive in sRGB formats, the rest linear). Empty slots are bound to a 1x1 white texture and flagged off in the uniform block.
+// Metallic-roughness textures are the exception to GPU mips: their chain is built on the CPU with
+// roughness averaged for the shading it feeds (raster/roughness_mips.h).
 #pragma once
 
 #include <cstdint>
@@ -16,6 +18,7 @@
 #include "gpu/buffer.h"
 #include "gpu/handle.h"
 #include "gpu/image.h"
+#include "raster/roughness_mips.h"
 #include "scene/scene.h"
 
 namespace ddish::gpu {
@@ -52,15 +55,23 @@ class MaterialTextures {
   // GpuError naming the format feature the device lacks for mip generation.
   static gpu::Image upload_texture(const gpu::Device& device, gpu::CommandRunner& runner,
                                    const scene::Texture& texture, VkFormat format);
+  // A mip chain built on the host (roughness_mip_chain's levels, level 0 first, each half the
+  // one before) uploaded as one image of `format` (public for tests).
+  static gpu::Image upload_mip_chain(const gpu::Device& device, gpu::CommandRunner& runner,
+                                     const std::vector<MipLevel>& chain, VkFormat format);
+
+  // How a slot's texture is stored: sRGB colour, linear data, or metallic-roughness (linear,
+  // roughness mips averaged for shading); one image per texture and kind.
+  enum class Kind { Srgb, Linear, MetallicRoughness };
 
  private:
   const gpu::Image& image_for(const gpu::Device& device, gpu::CommandRunner& runner,
-                              const scene::Scene& scene, int texture, bool srgb);
+                              const scene::Scene& scene, int texture, Kind kind);
 
   VkDevice device_ = VK_NULL_HANDLE;
   float max_anisotropy_ = 1.0f;
   gpu::Image white_;
-  std::map<std::pair<int, bool>, gpu::Image> images_;  // (texture, sRGB) -> image
+  std::map<std::pair<int, Kind>, gpu::Image> images_;  // (texture, kind) -> image
   // The sampler for a slot's glTF wrapS / wrapT and magFilter / minFilter, made on first use.
   VkSampler sampler_for(const scene::TextureSlot& slot);
 
