@@ -69,6 +69,7 @@
 #include "app/plan_report.h"
 #include "app/frame_progress.h"
 #include "app/probe_setup.h"
+#include "app/raster_options.h"
 #include "app/tracer_choice.h"
 #include "app/probe_options.h"
 #include "app/remote_probes.h"
@@ -88,9 +89,7 @@
 #include "probes/scheduler.h"
 #include "probes/tracer_source.h"
 #include "probes/volume_file.h"
-#include "raster/anisotropy.h"
 #include "raster/renderer.h"
-#include "raster/shading_pass.h"
 #include "raster/tonemap.h"
 #include "scene/features.h"
 #include "scene/gltf_loader.h"
@@ -121,13 +120,7 @@ struct RenderArgs {
   double time = 0.0;
   std::string out = "out";
   std::string timings;
-  std::uint32_t msaa = 0;
-  bool sample_shading = false;
-  std::string depth_prepass = "auto";  // raster::RendererOptions::depth_prepass
-  std::string shading_pass = "auto";   // raster::RendererOptions::shading_pass
-  int anisotropy = raster::kAutomaticAnisotropy;
-  std::uint32_t view_batch = 0;  // raster::RendererOptions::batch_views
-  std::uint32_t max_gpu_memory_mb = 0;  // raster::RendererOptions::memory_limit_bytes, in MiB
+  RasterArgs raster;
   std::string tonemap = "filmic";
   bool no_indirect = false;
   std::optional<std::uint32_t> device;
@@ -166,13 +159,7 @@ void check(const RenderArgs& a) {
   if (a.curve_server_key.empty() != a.curve_secret.empty())
     throw std::invalid_argument("--curve-server-key and --curve-secret go together");
   if (!(a.fps > 0.0)) throw std::invalid_argument("--fps must be positive");
-  if (a.msaa != 0 && a.msaa != 1 && a.msaa != 2 && a.msaa != 4 && a.msaa != 8 && a.msaa != 16)
-    throw std::invalid_argument(fmt::format("--msaa must be 1, 2, 4, 8 or 16, got {}", a.msaa));
-  try {
-    raster::check_anisotropy(a.anisotropy);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(std::string("--") + e.what());
-  }
+  check_raster_options(a.raster);
 }
 
 // Lavapipe keeps device memory in memfd files, which a file size limit (RLIMIT_FSIZE) caps too:
@@ -260,14 +247,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   check_file_size_limit(gpu.device().info());
   run.validation = gpu.instance().validation_enabled();
   run.log = gpu.instance().shared_validation();
-  raster::RendererOptions ro;
-  ro.msaa = a.msaa;
-  ro.sample_shading = a.sample_shading;
-  if (a.depth_prepass != "auto") ro.depth_prepass = a.depth_prepass == "on";
-  if (a.shading_pass != "auto") ro.shading_pass = raster::parse_shading_pass(a.shading_pass);
-  ro.anisotropy = a.anisotropy;
-  ro.batch_views = a.view_batch;
-  ro.memory_limit_bytes = std::uint64_t{a.max_gpu_memory_mb} << 20;
+  raster::RendererOptions ro = renderer_options(a.raster);
   ro.tone_curve = raster::parse_tone_curve(a.tonemap);
   ro.exposure = exposure_scale(a.lighting);
   ro.probes = !a.no_indirect;
@@ -507,32 +487,7 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
   cmd->add_option("--time", a.time, "scene time of frame 0 (seconds)")->capture_default_str();
   cmd->add_option("--out", a.out, "output directory")->capture_default_str();
   cmd->add_option("--timings", a.timings, "write per-frame stage milliseconds as JSON here");
-  cmd->add_option("--msaa", a.msaa, "samples per pixel (default: 4 where supported, else 1)");
-  cmd->add_flag("--sample-shading", a.sample_shading, "shade every MSAA sample");
-  cmd->add_option("--depth-prepass", a.depth_prepass,
-                  "draw depth first, then light only the nearest surface of each pixel: auto is on "
-                  "where the device has VK_EXT_post_depth_coverage (lavapipe has it); the same image")
-      ->check(CLI::IsMember({"auto", "on", "off"}))
-      ->capture_default_str();
-  cmd->add_option("--shading-pass", a.shading_pass,
-                  "forward: shade triangles as they are drawn; visibility: draw instance and triangle ids "
-                  "first, then shade each pixel once (the same image, cheaper on CPU devices); auto is "
-                  "visibility where the device has non-uniform texture indexing (Mesa 25 lavapipe) and "
-                  "neither --sample-shading nor --depth-prepass on|off is given, else forward")
-      ->check(CLI::IsMember({"auto", "forward", "visibility"}))
-      ->capture_default_str();
-  cmd->add_option("--max-gpu-memory", a.max_gpu_memory_mb,
-                  "MiB the frame's render target and readback may take (batches shrink to fit; a view "
-                  "that cannot fit is an error before the run); 0: what the device has free")
-      ->capture_default_str();
-  cmd->add_option("--view-batch", a.view_batch,
-                  "views drawn per submission into one reused target; 0: the most whose target "
-                  "fits 256 MiB (fewer means less memory, more submissions)")
-      ->capture_default_str();
-  cmd->add_option("--anisotropy", a.anisotropy,
-                  "texture anisotropic filtering: maximum 2..16 (clamped to the device), 1 off, "
-                  "0 automatic: 8 on GPUs, off on CPU devices (lavapipe, where it can stall a view)")
-      ->capture_default_str();
+  add_raster_options(*cmd, a.raster);
   cmd->add_option("--tonemap", a.tonemap, "display curve of the PNG: linear or filmic (ACES fit)")
       ->capture_default_str();
   cmd->add_flag("--no-indirect", a.no_indirect,
