@@ -15,8 +15,9 @@ BLOCKS = [
      "includes the gap-coded index; PSNR of a `view` client's image against the in-process render "
      "of the same probes (∞: identical)."),
     ("service_bandwidth.csv", "Bytes per second, change-driven stream",
-     "8×8×8 grid, 64 samples, uniform schedule (every probe traced every tick), 30 ticks/s, the "
-     "default delta threshold; a static scene against an animated one."),
+     "8×8×8 grid, 64 samples, uniform schedule (every probe traced every tick), 30 ticks/s, "
+     "serve's default thresholds (`--delta-threshold` for coefficients, `--moment-threshold` for "
+     "the 8×8 moment maps); a static scene against an animated one."),
     ("service_probe_age.csv", "Probe age at a client",
      "Server trace end to the client's upload, in milliseconds, on the client's clock (the server "
      "clock's offset comes from the snapshot replies); 30 ticks/s, `--frame-wait-ms 40`."),
