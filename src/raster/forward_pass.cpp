@@ -127,20 +127,21 @@ VkPipeline ForwardPass::pipeline_for(ViewMethod method, std::uint32_t view_count
 
 void ForwardPass::begin_pass(VkCommandBuffer cmd, const RenderTarget& target, VkImageView color_view,
                              VkImageView depth_view, std::uint32_t layers, std::uint32_t view_mask,
-                             const glm::vec4& clear, VkPipeline pipeline,
+                             const std::optional<glm::vec4>& clear, VkPipeline pipeline,
                              std::span<const VkDescriptorSet> sets) const {
+  const VkAttachmentLoadOp load = clear ? VK_ATTACHMENT_LOAD_OP_CLEAR : VK_ATTACHMENT_LOAD_OP_LOAD;
   VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   color.imageView = color_view;
   color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   // The clear colour is the environment: no full-screen draw (see the header).
-  color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-  color.clearValue.color = {{clear.r, clear.g, clear.b, clear.a}};
+  color.loadOp = load;
+  if (clear) color.clearValue.color = {{clear->r, clear->g, clear->b, clear->a}};
   // Multisampled targets are resolved after all views by RenderTarget::end_frame.
   color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   depth.imageView = depth_view;
   depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-  depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  depth.loadOp = load;
   depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
   depth.clearValue.depthStencil = {1.0f, 0};
   VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
@@ -330,27 +331,7 @@ void ForwardPass::record_transparent(VkCommandBuffer cmd, const scene::Scene& sc
     build_draws(scene, meshes, sorted, PassViews{views.view_proj.subspan(v, 1), views.eyes.subspan(v, 1)},
                 views.cull, blend_items_, stats_);
     if (blend_items_.empty()) continue;
-    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    color.imageView = target.color_view(v);
-    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = target.depth_view(v);
-    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
-    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
-    depth.storeOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    VkRenderingInfo info{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    const std::uint32_t w = target.desc().width, h = target.desc().height;
-    info.renderArea = {{0, 0}, {w, h}};
-    info.layerCount = 1;
-    info.colorAttachmentCount = 1;
-    info.pColorAttachments = &color;
-    info.pDepthAttachment = &depth;
-    vkCmdBeginRendering(cmd, &info);
-    set_viewport(cmd, w, h);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 3, sets.data(), 0, nullptr);
+    begin_pass(cmd, target, target.color_view(v), target.depth_view(v), 1, 0, std::nullopt, pipeline, sets);
     meshes.bind(cmd);
     draw_items(cmd, scene, materials, blend_items_, v, 0);
     vkCmdEndRendering(cmd);

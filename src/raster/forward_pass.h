@@ -111,9 +111,11 @@ class ForwardPass {
   // (GraphicsPipelineDesc::alpha_blend), the depth prepass of opaque and of masked instances.
   enum Kind : int { kShade = 0, kBlend = 1, kDepth = 2, kDepthMasked = 3, kKinds = 4 };
   VkPipeline pipeline_for(ViewMethod method, std::uint32_t view_count, Kind kind = kShade);
+  // Begins dynamic rendering into the views' colour and depth and binds the pipeline and sets.
+  // clear: the colour to clear to (depth to 1); none: draw over what earlier passes left there.
   void begin_pass(VkCommandBuffer cmd, const RenderTarget& target, VkImageView color,
                   VkImageView depth, std::uint32_t layers, std::uint32_t view_mask,
-                  const glm::vec4& clear, VkPipeline pipeline,
+                  const std::optional<glm::vec4>& clear, VkPipeline pipeline,
                   std::span<const VkDescriptorSet> sets) const;
   // depth: the prepass's {opaque, masked} pipelines, bound as the items' materials need them;
   // empty: whatever pipeline is bound draws them all.
