@@ -11,6 +11,7 @@
 #include "gpu/buffer.h"
 #include "gpu/commands.h"
 #include "gpu/device.h"
+#include "gpu/driver_quirks.h"
 #include "gpu/error.h"
 #include "gpu/transfer.h"
 #include "probes/probe_grid.h"
@@ -139,7 +140,11 @@ TEST_F(RendererTest, BatchesOfViewsEqualOneSubmission) {
     views.push_back(scene::look_at_view({-1.0f + 0.2f * float(i), 2.5f, 3.0f}, {0, 0.3f, 0}, {0, 1, 0},
                                         0.8f, 24, 20));
   std::vector<ViewMethod> methods{ViewMethod::per_view};
-  if (device().features().multiview) methods.push_back(ViewMethod::multiview);
+  // Mesa 22's lavapipe puts a clipped primitive into its pass's first view (gpu/driver_quirks.h),
+  // and which view is first depends on the batching: its multiview frames cannot be compared so.
+  if (device().features().multiview &&
+      gpu::multiview_defect(device().info()) != gpu::MultiviewDefect::clipped_primitives_lose_view)
+    methods.push_back(ViewMethod::multiview);
   for (ViewMethod method : methods) {
     Renderer whole(device(), s, volume, {.msaa = 4, .view_method = method, .batch_views = 10});
     Renderer batched(device(), s, volume, {.msaa = 4, .view_method = method, .batch_views = 8});
