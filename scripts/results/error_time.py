@@ -183,8 +183,9 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
                         "direct": next((r for r in rows if r["config"] == "direct"), None)}
         if cfg.get("error_all_cameras"):
             camera_rows_all += cameras_table(runner, cache, key, path, (W, H), sc["ref_spp"], frames,
-                                             defaults, report)
+                                             defaults, report, sc.get("camera_variant"))
     if camera_rows_all:
-        write_csv(results_dir / "error_cameras.csv", list(camera_rows_all[0].keys()), camera_rows_all)
+        header = list(dict.fromkeys(k for r in camera_rows_all for k in r))  # variant columns too
+        write_csv(results_dir / "error_cameras.csv", header, camera_rows_all)
         report.append("Every-camera CSV: [results/error_cameras.csv](results/error_cameras.csv).\n")
     return summary
