@@ -107,16 +107,18 @@ void write_rows(const std::filesystem::path& path, const OIIO::ImageSpec& spec,
 
 void write_exr_rows(const std::filesystem::path& path, int width, int height, const LinearRow& row,
                     ExrPixels pixels) {
-  // Half pixels: a 16-view 1680x2240 Sponza quilt of the rasterizer's (RGBA16F) values took
-  // about 40 % less time to zip and 15.2 MB instead of 26.0 MB, the same values (oiiotool, 2
-  // runs under load: 0.9-1.3 s instead of 1.5-2.1 s over reading the input).
-  OIIO::ImageSpec spec(width, height, 3,
-                       pixels == ExrPixels::half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-  // zip at zlib level 1: the 10240x2880 Cornell quilt took 4.4 s over uncompressed instead of
-  // 7.5 s at the default level 6, 56.5 MB instead of 47.3 MB (354 MB raw); piz (5.0 s, 56.4 MB)
-  // and rle (1.4 s, 192 MB) measured no better balance. For half pixels piz (14.3 MB) and zips
-  // (16.2 MB) took about as long as zip (the 16-view quilt above); b44 is lossy.
-  spec.attribute("compression", "zip:1");
+  const bool half = pixels == ExrPixels::half;
+  OIIO::ImageSpec spec(width, height, 3, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+  // Floats: zip at zlib level 1. The 10240x2880 Cornell quilt took 4.4 s over uncompressed
+  // instead of 7.5 s at the default level 6, 56.5 MB instead of 47.3 MB (354 MB raw); piz
+  // (5.0 s, 56.4 MB) and rle (1.4 s, 192 MB) measured no better balance.
+  // Halves (the rasterizer's quilts, written while the next frames render on the same cores, so
+  // their encoding time is frame time): rle. 48-view 3360x3360 quilts, oiiotool under load,
+  // seconds over reading the input: Sponza rle 0.2-0.3 s / 59.6 MB, zip:1 1.0 s / 45.0 MB,
+  // none 0.1-0.25 s / 67.8 MB; the Cornell box rle 0.6 s / 36.4 MB, zip:1 1.3 s / 20.7 MB.
+  // Against the float zip:1 files before (Sponza 76.9 MB, Cornell 37.2 MB in 2.0 s) rle is
+  // never larger and 3-7 times quicker.
+  spec.attribute("compression", half ? "rle" : "zip:1");
   write_rows(path, spec, [&](int y, void* buffer) { row(y, static_cast<float*>(buffer)); },
              OIIO::TypeDesc::FLOAT);
 }

@@ -33,9 +33,9 @@ void write_png(const std::filesystem::path& path, const Image& image);
 // composed from many views is never held whole: `row(y, out)` fills row y, 3 * width values.
 // Rows are asked for in order, once each. Throws like the writers above, and
 // std::invalid_argument for an empty size.
-// The EXR holds 32-bit floats, or with ExrPixels::half 16-bit halves: exact for values that are
-// halves already (the rasterizer's RGBA16F pixels), others rounded to the nearest half; less to
-// compress and store.
+// The EXR holds 32-bit floats (zip), or with ExrPixels::half 16-bit halves (rle, the quicker
+// encoding): exact for values that are halves already (the rasterizer's RGBA16F pixels), others
+// rounded to the nearest half.
 using LinearRow = std::function<void(int y, float* rgb)>;
 using DisplayRow = std::function<void(int y, std::uint8_t* rgb)>;  // sRGB-encoded bytes
 enum class ExrPixels { float32, half };

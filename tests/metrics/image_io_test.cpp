@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 #include <limits>
 #include <stdexcept>
 
@@ -68,7 +67,8 @@ TEST(ImageIo, ExrRoundTripIsExact) {
 }
 
 // The rasterizer's EXRs: values that are halves already (its RGBA16F pixels) come back exactly,
-// including the extremes, in a smaller file than 32-bit floats; the zeros of an atlas too.
+// including the extremes and the zeros of an atlas. (Sizes and times are measurements, in
+// image_io.cpp, not pass marks.)
 TEST(ImageIo, HalfExrKeepsHalfValuesExactly) {
   auto dir = testing::scratch_dir();
   Image img(7, 5);
@@ -86,11 +86,9 @@ TEST(ImageIo, HalfExrKeepsHalfValuesExactly) {
     std::memcpy(rgb, &img.pixels()[std::size_t(y) * 7].x, 3 * 7 * sizeof(float));
   };
   write_exr_rows(dir / "half.exr", 7, 5, row, ExrPixels::half);
-  write_exr_rows(dir / "float.exr", 7, 5, row);
   const Image back = read_image(dir / "half.exr");
   for (std::size_t i = 0; i < img.pixel_count(); ++i)
     EXPECT_EQ(back.pixels()[i], img.pixels()[i]) << "pixel " << i;
-  EXPECT_LT(std::filesystem::file_size(dir / "half.exr"), std::filesystem::file_size(dir / "float.exr"));
 }
 
 TEST(ImageIo, PngHoldsDisplayValues) {
