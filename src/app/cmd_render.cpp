@@ -324,7 +324,9 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   if (live) options.render_request = live->request(files);
   // The frames whose files are written: with the window the sink gets every frame (to present
   // it), but only these come back to the CPU (FrameLoopOptions::read_back).
-  const auto writes = [&](int k, bool last) { return files && ((a.every > 0 && (k + 1) % a.every == 0) || last); };
+  const auto writes = [&](int k, bool last) {
+    return files && ((a.every > 0 && (k + 1) % a.every == 0) || last);
+  };
   if (live) options.read_back = writes;
   double present_ms = 0.0;
   options.loop_period = a.loop ? s.animation_duration() : 0.0;

@@ -85,8 +85,8 @@ struct FrameLoopOptions {
   // Which of the frames the sink gets need their pixels read back (files to write): asked
   // before the frame renders, `last` true for the run's last frame (the last of `frames`, or
   // the stop already raised). Null: every frame the sink gets. The other frames' pixels stay
-  // on the GPU: reading back and converting every view costs about 0.8 s of a 48-view 420x560
-  // frame on lavapipe. A stop raised while a frame renders unread makes it the last: it is
+  // on the GPU: reading back and converting a 48-view 420x560 frame took 63-194 ms on
+  // lavapipe (under load 6-10). A stop raised while a frame renders unread makes it the last: it is
   // rendered again and read back (its raster stages count both renders, FrameCounts).
   std::function<bool(int frame, bool last)> read_back;
   // Set: called before each frame (before the scene is posed); `frames` is then the most frames.
