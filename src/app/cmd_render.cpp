@@ -322,6 +322,12 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   // Ctrl-C: this frame is the last one, written whole; the window's close does the same.
   options.stop = controls ? &controls->stop() : &stop_flag();
   if (live) options.render_request = live->request(files);
+  // The frames whose files are written: with the window the sink gets every frame (to present
+  // it), but only these come back to the CPU (FrameLoopOptions::read_back).
+  const auto writes = [&](int k, bool last) {
+    return files && ((a.every > 0 && (k + 1) % a.every == 0) || last);
+  };
+  if (live) options.read_back = writes;
   double present_ms = 0.0;
   options.loop_period = a.loop ? s.animation_duration() : 0.0;
   options.warmup = a.warmup;
@@ -336,9 +342,8 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   const FrameSink sink = [&](int k, raster::FrameOutput& frame) {
     if (live) {
       present_ms = live->present();
-      const bool asked = a.every > 0 && (k + 1) % a.every == 0;
-      if (!files || !(asked || k + 1 == options.frames || controls->stop().load()))
-        return std::vector<fs::path>{};
+      // A frame read back is one to write (the loop asked `writes` with what it knew).
+      if (frame.views.empty() || frame.views.front().display.empty()) return std::vector<fs::path>{};
     }
     const std::string tag = a.every > 0 ? fmt::format("{:04d}", k) : "";
     queue.push(std::move(frame.views), fmt::format("frame_{:04d}", k), tag);
@@ -478,7 +483,8 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
                 "shows it");
   cmd->add_flag("--every{1}", a.every,
                 "--every: write every frame, not only the last; --every=N: every N-th frame "
-                "(frames N-1, 2N-1, ...) and the last")
+                "(frames N-1, 2N-1, ...) and the last (only the frames written are read back "
+                "from the GPU)")
       ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--loop", a.loop,
                 "play the animations again and again: the scene time wraps at the longest "

@@ -44,6 +44,8 @@ struct FrameCounts {
   bool shadows_reused = false;
   std::uint32_t forward_passes = 0;
   std::uint32_t tonemap_passes = 0;
+  bool read_back = false;       // the views' pixels came back to the CPU (a frame to write)
+  bool rendered_again = false;  // the stop came while it rendered unread: drawn again, read back
   // The scheduler's log of this frame (budget, stages, probes traced and skipped, samples,
   // rays); with update_probes off only its stages and budget are filled.
   probes::SchedulerFrameRecord schedule;

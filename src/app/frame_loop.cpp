@@ -51,11 +51,35 @@ raster::ProbeUploadStats hand_off(ProbeSource& source, raster::Renderer& rendere
   return renderer.upload_probes(source.volume(), changed);
 }
 
+// A render's stages and passes into the frame's (a frame rendered again counts both). The GPU
+// passes run while the CPU waits for the submission, so the wait is split into the passes'
+// timestamp durations and the rest (submission, resolve and copies, idle): the stages of a
+// frame add up to its wall time.
+void add_raster(const raster::FrameStats& st, metrics::FrameTimings& timings, FrameCounts& counts) {
+  const double gpu_ms = st.shadow_gpu_ms + st.forward_gpu_ms + st.tonemap_gpu_ms;
+  timings.add("raster_record", st.record_ms);
+  timings.add("shadow_gpu", st.shadow_gpu_ms);
+  timings.add("forward_gpu", st.forward_gpu_ms);
+  timings.add("tonemap_gpu", st.tonemap_gpu_ms);
+  timings.add("raster_wait", std::max(0.0, st.execute_ms - gpu_ms));
+  timings.add("readback", st.readback_ms);
+  counts.shadow_passes += st.shadow_passes;
+  if (!counts.rendered_again) counts.shadows_reused = st.shadows_reused;  // the frame's first render
+  counts.forward_passes += st.forward_passes;
+  counts.tonemap_passes += st.tonemap_passes;
+}
+
 }  // namespace
 
 FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
                                const std::function<void(const FrameReport&)>& progress) {
   FrameLoopResult result;
+  // Whether frame k (the run's last when `last`) needs its pixels on the CPU: the sink gets it
+  // and writes it.
+  const auto wants_pixels = [&](int k, bool last) {
+    const bool taken = sink && ((o.every > 0 && (k + 1) % o.every == 0) || last);
+    return o.render_request.read_back && taken && (!o.read_back || o.read_back(k, last));
+  };
   if (o.warmup.enabled() && o.update_probes) {
     metrics::FrameTimings ignored;  // the warm-up is no frame's stage
     const double t0 = o.loop_period > 0.0 ? std::fmod(o.time, o.loop_period) : o.time;
@@ -98,24 +122,24 @@ FrameLoopResult FrameLoop::run(const FrameLoopOptions& o, const FrameSink& sink,
         (sent.imported ? report.counts.probes_imported : report.counts.probes_uploaded) = sent.probes;
       }
     }
-    raster::FrameOutput frame = renderer_.render(scene_, views, o.render_request);
-    // The GPU passes run while the CPU waits for the submission, so the wait is split into the
-    // passes' timestamp durations and the rest (submission, resolve and copies, idle): the
-    // stages of a frame add up to its wall time.
-    const raster::FrameStats& st = frame.stats;
-    const double gpu_ms = st.shadow_gpu_ms + st.forward_gpu_ms + st.tonemap_gpu_ms;
-    timings.add("raster_record", st.record_ms);
-    timings.add("shadow_gpu", st.shadow_gpu_ms);
-    timings.add("forward_gpu", st.forward_gpu_ms);
-    timings.add("tonemap_gpu", st.tonemap_gpu_ms);
-    timings.add("raster_wait", std::max(0.0, st.execute_ms - gpu_ms));
-    timings.add("readback", st.readback_ms);
-    report.counts.shadow_passes = st.shadow_passes;
-    report.counts.shadows_reused = st.shadows_reused;
-    report.counts.forward_passes = st.forward_passes;
-    report.counts.tonemap_passes = st.tonemap_passes;
+    // Only the frames the sink writes are read back; the stop flag is read before the render
+    // (a stop already raised makes this frame the last) and again after it.
+    const bool stop_before = o.stop && o.stop->load();
+    raster::RenderRequest request = o.render_request;
+    request.read_back = wants_pixels(k, k + 1 == o.frames || stop_before);
+    raster::FrameOutput frame = renderer_.render(scene_, views, request);
+    add_raster(frame.stats, timings, report.counts);
     const bool stopping = o.stop && o.stop->load();
     const bool last = k + 1 == o.frames || stopping;
+    if (!request.read_back && wants_pixels(k, last)) {
+      // The stop came while the frame rendered unread, and the last frame must be written: the
+      // same views again (the probes and pose are unchanged), this time read back.
+      request.read_back = true;
+      report.counts.rendered_again = true;
+      frame = renderer_.render(scene_, views, request);
+      add_raster(frame.stats, timings, report.counts);
+    }
+    report.counts.read_back = request.read_back;
     if (sink && ((o.every > 0 && (k + 1) % o.every == 0) || last)) {
       metrics::StageTimer timer(timings, "output");
       for (auto& path : sink(k, frame)) result.written.push_back(std::move(path));

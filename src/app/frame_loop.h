@@ -6,8 +6,9 @@
 // stage's milliseconds go into a metrics::FrameTimings per frame:
 //   pose, tracer_update (animated scenes), probe_update, upload, raster_record (CPU: frame data
 //   and command recording), shadow_gpu / forward_gpu / tonemap_gpu (GPU timestamps), raster_wait
-//   (the rest of the wait for the GPU: submission, resolve, copies), readback, output (the
-//   sink's time: for `render`, handing the views to the writer thread, app/output_queue.h).
+//   (the rest of the wait for the GPU: submission, resolve, copies), readback (0 for a frame
+//   the sink does not write: only written frames come back to the CPU), output (the sink's
+//   time: for `render`, handing the views to the writer thread, app/output_queue.h).
 // They do not overlap, so a frame's total_ms is its wall time; rasterization is
 // raster_record + the three *_gpu + raster_wait. All N views of a frame go to the renderer in
 // one call, after the one probe update they share.
@@ -79,7 +80,15 @@ struct FrameLoopOptions {
   double loop_period = 0.0;
   // Handed to the renderer every frame: a GPU sink (the window's swapchain, OpenXR's) records
   // its copies after each batch and may leave the pixels on the GPU (raster/render_request.h).
+  // Its read_back says whether any frame needs its pixels on the CPU; which ones do is below.
   raster::RenderRequest render_request;
+  // Which of the frames the sink gets need their pixels read back (files to write): asked
+  // before the frame renders, `last` true for the run's last frame (the last of `frames`, or
+  // the stop already raised). Null: every frame the sink gets. The other frames' pixels stay
+  // on the GPU: reading back and converting a 48-view 420x560 frame took 63-194 ms on
+  // lavapipe (under load 6-10). A stop raised while a frame renders unread makes it the last: it is
+  // rendered again and read back (its raster stages count both renders, FrameCounts).
+  std::function<bool(int frame, bool last)> read_back;
   // Set: called before each frame (before the scene is posed); `frames` is then the most frames.
   FramePacer pacer;
   // Before the first frame (and the first pacer call: OpenXR's time between READY and the

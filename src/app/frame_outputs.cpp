@@ -116,7 +116,8 @@ std::vector<fs::path> FrameWriter::write(const FrameViews& views, const std::str
     const fs::path png = options_.dir / (stem + ".png");
     const fs::path exr = options_.dir / (stem + ".exr");
     metrics::write_png_rows(png, width, height, display_row);
-    metrics::write_exr_rows(exr, width, height, linear_row);
+    metrics::write_exr_rows(exr, width, height, linear_row,
+                            views.linear_is_half() ? metrics::ExrPixels::half : metrics::ExrPixels::float32);
     written.push_back(png);
     written.push_back(exr);
   };

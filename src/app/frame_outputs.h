@@ -13,7 +13,8 @@
 //                    values by a Looking Glass calibration (with a calibration, quilts only)
 //
 // With a frame tag (render --every) the multi-view names carry it: STEM_0003_qs8x6a0.75.png,
-// view_07_0003.png, STEM_0003_lenticular.png. PNGs hold display values, EXRs linear radiance.
+// view_07_0003.png, STEM_0003_lenticular.png. PNGs hold display values, EXRs linear radiance
+// (16-bit halves for the rasterizer's views, which are halves already; 32-bit floats otherwise).
 #pragma once
 
 #include <cstddef>
@@ -48,9 +49,12 @@ class FrameViews {
   virtual int height() const = 0;
   virtual void linear_row(std::size_t view, int y, float* rgb) const = 0;         // 3 * width
   virtual void display_row(std::size_t view, int y, std::uint8_t* rgb) const = 0;  // sRGB bytes
+  // Whether every linear value is a 16-bit half already: the EXR then stores halves, exactly.
+  virtual bool linear_is_half() const { return false; }
 };
 
 // The rasterizer's read-back views: linear radiance and the tone-mapping pass's display bytes.
+// The linear pixels come from its RGBA16F target (Renderer::render), so its EXRs hold halves.
 class RasterFrameViews final : public FrameViews {
  public:
   // Throws std::invalid_argument for no views or views of different sizes.
@@ -60,6 +64,7 @@ class RasterFrameViews final : public FrameViews {
   int height() const override { return views_.front().height; }
   void linear_row(std::size_t view, int y, float* rgb) const override;
   void display_row(std::size_t view, int y, std::uint8_t* rgb) const override;
+  bool linear_is_half() const override { return true; }
 
  private:
   std::span<const raster::ViewImage> views_;

@@ -44,6 +44,8 @@ nlohmann::ordered_json frame_record_json(const metrics::FrameTimings& t, const F
                         {"shadows_reused", c.shadows_reused},
                         {"forward", c.forward_passes},
                         {"tonemap", c.tonemap_passes}};
+  f["read_back"] = c.read_back;
+  f["rendered_again"] = c.rendered_again;
   f["scheduler"] = c.schedule.to_json();
   f["resources"] = {{"rss_kb", c.resources.rss_kb},
                     {"open_fds", c.resources.open_fds},

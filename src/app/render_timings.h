@@ -9,7 +9,9 @@
 //   from a probe tracer's averages on its device: the GPU-resident hand-off), "probes_active",
 //   "probes_inactive", "probes_never_updated", "oldest_probe_age", "probes_unclassified"
 //   (after the update), "raster_passes": {"shadow", "shadows_reused", "forward", "tonemap"}
-//   (raster::FrameStats), "scheduler" (probes::SchedulerFrameRecord's JSON: budget, stages,
+//   (raster::FrameStats), "read_back" (the views came back to the CPU: only the frames that
+//   are written do), "rendered_again" (a stop came while the frame rendered unread: it was
+//   drawn a second time to be read back and written as the last), "scheduler" (probes::SchedulerFrameRecord's JSON: budget, stages,
 //   probes traced / skipped, samples per probe, rays, over_allowance), and "per_view_ms":
 //   {"forward_gpu": forward_gpu / views, "raster": (raster_record + shadow_gpu + forward_gpu +
 //   tonemap_gpu + raster_wait + readback) / views}; for `ddish view` also "stream":

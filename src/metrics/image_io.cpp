@@ -72,21 +72,23 @@ Image read_image(const std::filesystem::path& path) {
 namespace {
 
 // Opens a temporary beside `path` for `spec` (the format plugin chosen by `path`'s extension),
-// writes it row by row (`fill(y, buffer)` produces row y in the spec's pixel format) and renames
-// it over `path` when complete (io/atomic_file.h: whole files only).
+// writes it row by row (`fill(y, buffer)` produces row y in `given`, the file's pixel format
+// unless said otherwise: OpenImageIO converts) and renames it over `path` when complete
+// (io/atomic_file.h: whole files only).
 void write_rows(const std::filesystem::path& path, const OIIO::ImageSpec& spec,
-                const std::function<void(int, void*)>& fill) {
+                const std::function<void(int, void*)>& fill, OIIO::TypeDesc given = OIIO::TypeDesc::UNKNOWN) {
+  if (given == OIIO::TypeDesc::UNKNOWN) given = spec.format;
   if (spec.width <= 0 || spec.height <= 0)
     throw std::invalid_argument("cannot write an empty image to " + path.string());
   io::write_atomically(path, [&](const std::filesystem::path& temporary) {
     auto out = OIIO::ImageOutput::create(path.string());
     if (!out) throw std::runtime_error(one_line(OIIO::geterror()));
-    std::vector<std::uint8_t> buffer(spec.scanline_bytes());
+    std::vector<std::uint8_t> buffer(std::size_t(spec.width) * std::size_t(spec.nchannels) * given.size());
     errno = 0;
     bool ok = out->open(temporary.string(), spec);
     for (int y = 0; ok && y < spec.height; ++y) {
       fill(y, buffer.data());
-      ok = out->write_scanline(y, 0, spec.format, buffer.data());
+      ok = out->write_scanline(y, 0, given, buffer.data());
     }
     if (!ok || !out->close()) {
       // The system's reason (a full disk, a size limit) says it best; the plugins' own messages
@@ -103,13 +105,22 @@ void write_rows(const std::filesystem::path& path, const OIIO::ImageSpec& spec,
 
 }  // namespace
 
-void write_exr_rows(const std::filesystem::path& path, int width, int height, const LinearRow& row) {
-  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::FLOAT);
-  // zip at zlib level 1: the 10240x2880 Cornell quilt took 4.4 s over uncompressed instead of
-  // 7.5 s at the default level 6, 56.5 MB instead of 47.3 MB (354 MB raw); piz (5.0 s, 56.4 MB)
-  // and rle (1.4 s, 192 MB) measured no better balance.
-  spec.attribute("compression", "zip:1");
-  write_rows(path, spec, [&](int y, void* buffer) { row(y, static_cast<float*>(buffer)); });
+void write_exr_rows(const std::filesystem::path& path, int width, int height, const LinearRow& row,
+                    ExrPixels pixels) {
+  const bool half = pixels == ExrPixels::half;
+  OIIO::ImageSpec spec(width, height, 3, half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
+  // Floats: zip at zlib level 1. The 10240x2880 Cornell quilt took 4.4 s over uncompressed
+  // instead of 7.5 s at the default level 6, 56.5 MB instead of 47.3 MB (354 MB raw); piz
+  // (5.0 s, 56.4 MB) and rle (1.4 s, 192 MB) measured no better balance.
+  // Halves (the rasterizer's quilts, written while the next frames render on the same cores, so
+  // their encoding time is frame time): rle. 48-view 3360x3360 quilts, oiiotool under load,
+  // seconds over reading the input: Sponza rle 0.2-0.3 s / 59.6 MB, zip:1 1.0 s / 45.0 MB,
+  // none 0.1-0.25 s / 67.8 MB; the Cornell box rle 0.6 s / 36.4 MB, zip:1 1.3 s / 20.7 MB.
+  // Against the float zip:1 files before (Sponza 76.9 MB, Cornell 37.2 MB in 2.0 s) rle is
+  // never larger and 3-7 times quicker.
+  spec.attribute("compression", half ? "rle" : "zip:1");
+  write_rows(path, spec, [&](int y, void* buffer) { row(y, static_cast<float*>(buffer)); },
+             OIIO::TypeDesc::FLOAT);
 }
 
 void write_png_rows(const std::filesystem::path& path, int width, int height, const DisplayRow& row) {
@@ -119,6 +130,10 @@ void write_png_rows(const std::filesystem::path& path, int width, int height, co
   // more than an uncompressed write instead of 3.8 s, 8.2 MB instead of 5.1 MB (88.6 MB raw;
   // oiiotool on this 2-core machine, under load).
   spec.attribute("png:compressionLevel", 1);
+  // Every row with the "up" filter instead of libpng's choice per row: a 3360x3360 Sponza quilt
+  // took 1.19-1.41 s of CPU instead of 1.41-2.13 s (oiiotool, 3 runs each, with reading its
+  // input), 14.9 MB instead of 14.3 MB; "sub" (15.5 MB) and none (16.4 MB) were no quicker.
+  spec.attribute("png:filter", 32);  // PNG_FILTER_UP
   write_rows(path, spec, [&](int y, void* buffer) { row(y, static_cast<std::uint8_t*>(buffer)); });
 }
 

@@ -33,9 +33,14 @@ void write_png(const std::filesystem::path& path, const Image& image);
 // composed from many views is never held whole: `row(y, out)` fills row y, 3 * width values.
 // Rows are asked for in order, once each. Throws like the writers above, and
 // std::invalid_argument for an empty size.
+// The EXR holds 32-bit floats (zip), or with ExrPixels::half 16-bit halves (rle, the quicker
+// encoding): exact for values that are halves already (the rasterizer's RGBA16F pixels), others
+// rounded to the nearest half.
 using LinearRow = std::function<void(int y, float* rgb)>;
 using DisplayRow = std::function<void(int y, std::uint8_t* rgb)>;  // sRGB-encoded bytes
-void write_exr_rows(const std::filesystem::path& path, int width, int height, const LinearRow& row);
+enum class ExrPixels { float32, half };
+void write_exr_rows(const std::filesystem::path& path, int width, int height, const LinearRow& row,
+                    ExrPixels pixels = ExrPixels::float32);
 void write_png_rows(const std::filesystem::path& path, int width, int height, const DisplayRow& row);
 
 // Chooses by extension (case-insensitive): ".exr" -> write_exr, ".png" -> write_png; anything

@@ -1,6 +1,6 @@
-// --every=N writes frames N-1, 2N-1, ... and the last, and --timings records per frame what the
-// process holds (resident memory, open descriptors, live Vulkan allocations): the figures the
-// soak run (scripts/results/soak.py) checks for growth.
+// --every=N writes frames N-1, 2N-1, ... and the last, only those are read back from the GPU,
+// and --timings records per frame what the process holds (resident memory, open descriptors,
+// live Vulkan allocations): the figures the soak run (scripts/results/soak.py) checks for growth.
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -41,6 +41,12 @@ TEST_F(EveryCli, EveryNthFrameAndTheLastAreWrittenAndResourcesAreRecorded) {
     EXPECT_GE(res.at("open_fds").get<int>(), 3);          // stdin, stdout, stderr at least
     EXPECT_GT(res.at("gpu_allocations").get<long long>(), 0);
     EXPECT_GT(res.at("gpu_bytes").get<long long>(), 0);
+  }
+  // Only the written frames came back to the CPU (readback is the CPU's conversion of them).
+  for (std::size_t k = 0; k < 8; ++k) {
+    const bool written = k == 2 || k == 5 || k == 7;
+    EXPECT_EQ(doc["frames"][k].at("read_back").get<bool>(), written) << k;
+    EXPECT_EQ(doc["frames"][k]["stages_ms"]["readback"].get<double>() > 0.0, written) << k;
   }
   // Nothing is allocated per frame on the device: the tally is the same after every frame.
   EXPECT_EQ(doc["frames"][1]["resources"]["gpu_allocations"], doc["frames"][7]["resources"]["gpu_allocations"]);

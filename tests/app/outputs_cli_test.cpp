@@ -5,7 +5,8 @@
 //   test may mount one) are one error line and exit 2, and no partial file is left;
 // - SIGINT / SIGTERM end the frame loop after the current frame: exit 128 + signal, the stop is
 //   reported with the frame reached, every file left is whole and --timings has every frame
-//   done; a second SIGINT aborts at once and still leaves no temporary behind.
+//   done; a stop that lands while a frame renders without being read back still writes that
+//   frame; a second SIGINT aborts at once and still leaves no temporary behind.
 #include <signal.h>
 #include <spawn.h>
 #include <sys/mount.h>
@@ -317,9 +318,60 @@ TEST_F(OutputsCli, SigintEndsAfterTheCurrentFrameWithWholeFiles) {
   const Result self = run("compare " + exr + " " + exr);
   EXPECT_EQ(self.code, 0) << self.err;
   EXPECT_TRUE(contains(self.out, "inf")) << self.out;
-  // --timings has every frame done.
+  // --timings has every frame done; only the last came back to the CPU.
   const nlohmann::json timings = nlohmann::json::parse(slurp(dir_ / "timings.json"));
-  EXPECT_EQ(timings["frames"].size(), std::size_t(done));
+  ASSERT_EQ(timings["frames"].size(), std::size_t(done));
+  for (int k = 0; k < done; ++k)
+    EXPECT_EQ(timings["frames"][std::size_t(k)]["read_back"].get<bool>(), k + 1 == done) << k;
+}
+
+// Only written frames are read back (FrameLoopOptions::read_back), so a stop usually lands while
+// a frame renders that will not be read back; that frame is rendered again, read back and
+// written as the last, with the pixels of a run that ends there. Without indirect light nearly
+// all of a frame is its rasterization, so almost every stop lands in it: the test tries up to
+// four runs until one did (each run checks the frame written either way).
+TEST_F(OutputsCli, StopDuringAFrameNotReadBackStillWritesIt) {
+  const auto args = [&](const fs::path& out, int frames) {
+    return std::vector<std::string>{
+        "render", std::string(DDISH_SOURCE_DIR) + "/scenes/cornell_animated.gltf", "--no-indirect",
+        "--msaa", "4", "--width", "128", "--height", "128", "--fps", "4", "--warmup-ms", "0",
+        "--frames", std::to_string(frames), "--out", out.string(), "--timings",
+        (dir_ / "timings.json").string()};
+  };
+  bool again = false;
+  for (int attempt = 0; attempt < 4 && !again; ++attempt) {
+    const fs::path out = dir_ / ("stopped" + std::to_string(attempt));
+    const pid_t pid = spawn(args(out, 100000));
+    ASSERT_TRUE(wait_for_text("frame 2/100000", 120)) << child_err();
+    ASSERT_EQ(kill(pid, SIGINT), 0);
+    ASSERT_EQ(wait_exit(pid, 60), 130) << child_err();
+    const std::string err = child_err();
+    const std::size_t at = err.find("render: stopped by SIGINT after frame ");
+    ASSERT_NE(at, std::string::npos) << err;
+    const int done = std::stoi(err.substr(at + 38));
+    const nlohmann::json timings = nlohmann::json::parse(slurp(dir_ / "timings.json"));
+    ASSERT_EQ(timings["frames"].size(), std::size_t(done));
+    for (int k = 0; k + 1 < done; ++k) {
+      const nlohmann::json& f = timings["frames"][std::size_t(k)];
+      EXPECT_FALSE(f["read_back"].get<bool>()) << "frame " << k << " is not written";
+      EXPECT_EQ(f["stages_ms"]["readback"].get<double>(), 0.0) << k;
+      EXPECT_FALSE(f["rendered_again"].get<bool>()) << k;
+    }
+    const nlohmann::json& last = timings["frames"].back();
+    EXPECT_TRUE(last["read_back"].get<bool>());
+    again = last["rendered_again"].get<bool>();
+    // A run that ends at that frame by its --frames draws the same pose: the same bytes.
+    char frame[32];
+    std::snprintf(frame, sizeof frame, "frame_%04d.png", done - 1);
+    const fs::path ended = dir_ / ("ended" + std::to_string(attempt));
+    const pid_t whole = spawn(args(ended, done));
+    ASSERT_EQ(wait_exit(whole, 120), 0) << child_err();
+    EXPECT_EQ(names_in(out), (std::vector<std::string>{std::string(frame, 10) + ".exr", frame}));
+    EXPECT_TRUE(slurp(out / frame) == slurp(ended / frame)) << frame << " differs";
+    std::printf("attempt %d: stopped after frame %d, %s\n", attempt, done,
+                again ? "rendered again" : "the stop came outside the render");
+  }
+  EXPECT_TRUE(again) << "no stop of four landed in a frame's rendering";
 }
 
 TEST_F(OutputsCli, SigtermWithEveryLeavesEveryFrameWhole) {

@@ -1,6 +1,7 @@
 #include "metrics/image_io.h"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -63,6 +64,31 @@ TEST(ImageIo, ExrRoundTripIsExact) {
   ASSERT_EQ(back.height(), img.height());
   for (std::size_t i = 0; i < img.pixel_count(); ++i)
     EXPECT_EQ(back.pixels()[i], img.pixels()[i]) << "pixel " << i;  // 32-bit float: bit exact
+}
+
+// The rasterizer's EXRs: values that are halves already (its RGBA16F pixels) come back exactly,
+// including the extremes and the zeros of an atlas. (Sizes and times are measurements, in
+// image_io.cpp, not pass marks.)
+TEST(ImageIo, HalfExrKeepsHalfValuesExactly) {
+  auto dir = testing::scratch_dir();
+  Image img(7, 5);
+  // Halves by construction: the extremes, and multiples of 3/8 below 2^11 (11 significant bits)
+  // scaled by powers of two.
+  const float extremes[] = {0.0f, 65504.0f, 0x1p-14f /* smallest normal */,
+                            0x1p-24f /* smallest subnormal */, -2.5f,
+                            std::numeric_limits<float>::infinity(), 1.5f};
+  for (std::size_t i = 0; i < img.pixel_count(); ++i) {
+    const float v = float(i) * 0.375f;
+    img.pixels()[i] = i < 7 ? glm::vec3(extremes[i], -extremes[i], extremes[i])
+                            : glm::vec3(v, -v, v * 0x1p-10f);
+  }
+  const auto row = [&](int y, float* rgb) {
+    std::memcpy(rgb, &img.pixels()[std::size_t(y) * 7].x, 3 * 7 * sizeof(float));
+  };
+  write_exr_rows(dir / "half.exr", 7, 5, row, ExrPixels::half);
+  const Image back = read_image(dir / "half.exr");
+  for (std::size_t i = 0; i < img.pixel_count(); ++i)
+    EXPECT_EQ(back.pixels()[i], img.pixels()[i]) << "pixel " << i;
 }
 
 TEST(ImageIo, PngHoldsDisplayValues) {
