@@ -5,9 +5,10 @@
 // full-screen triangle per view shades each pixel once (visibility_shade.glsl): it reads the
 // triangles of its samples back from the scene's vertex and index buffers, evaluates the
 // material (textures picked per pixel from one array, so the device needs non-uniform
-// sampled-image indexing) and lights it exactly as the forward shader does, and writes the
-// mean over its samples, so the resolve is unchanged. glTF BLEND instances then go through the
-// forward pass's transparent pass (ForwardPass::record_transparent) over this depth.
+// sampled-image indexing, and subgroup ballot for read_slot's loop) and lights it exactly as
+// the forward shader does, and writes the mean over its samples, so the resolve is
+// unchanged. glTF BLEND instances then go through the forward pass's transparent pass
+// (ForwardPass::record_transparent) over this depth.
 //
 // Why: lavapipe shades fragments in 4x4 blocks with a coverage mask, so the forward pass's
 // small triangles leave most lanes idle, and every layer of overdraw that survives the early
@@ -25,8 +26,11 @@
 // pixel's first shading in this pass (lavapipe's compute path, or neighbouring work items
 // from unrelated triangles and materials), so the lanes it saved were spent. Of the terms, the material textures cost most: without
 // them 2.2x against 3.2x, without direct lights 2.9x, without probe light 3.0x, without
-// shadows or specular probes 3.2x (one view, load 9-10). Neither plain indexing of the
-// texture array nor textureLod instead of textureGrad changed that measurably. (Merging a
+// shadows or specular probes 3.2x (one view, load 9-10). The forward pass, whose textures
+// are bound per draw, pays less for them (2.9-3.1x without against 3.7x), so the material
+// reads take one texture at a time for the lanes that share it (visibility_shade.glsl's
+// read_slot): the same pixels, 3.01x against 3.20x (Sponza, 1 view, mean of five interleaved
+// runs at load 6-7). textureLod instead of textureGrad changed nothing measurable. (Merging a
 // pixel's triangles that lie on one smooth surface did not pay: the test costs about what it
 // saves.)
 //
