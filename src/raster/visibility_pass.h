@@ -24,7 +24,8 @@
 // the noise (4 views, load 9-12: Sponza 2.28x and 2.34x against 2.22x and 2.45x, Breakfast
 // room 2.61x and 2.44x against 2.69x and 2.72x): there an edge pixel cost about three times a
 // pixel's first shading in this pass (lavapipe's compute path, or neighbouring work items
-// from unrelated triangles and materials), so the lanes it saved were spent. Of the terms, the material textures cost most: without
+// from unrelated triangles and materials), so the lanes it saved were spent. A fragment pass over
+// a compact image (16 edge pixels to a full 4x4 block) instead did no better either. Of the terms, the material textures cost most: without
 // them 2.2x against 3.2x, without direct lights 2.9x, without probe light 3.0x, without
 // shadows or specular probes 3.2x (one view, load 9-10). The forward pass, whose textures
 // are bound per draw, pays less for them (2.9-3.1x without against 3.7x), so the material
