@@ -11,6 +11,7 @@
 // Not compiled on its own: visibility_shade_sh1..4.frag set PROBE_SH_ORDER, and the _ms
 // variants VISIBILITY_MULTISAMPLED (the id image is then multisampled).
 #extension GL_EXT_nonuniform_qualifier : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #include "raster_common.glsl"
 #include "forward_variant.glsl"
 #include "probe_lighting.glsl"
@@ -80,7 +81,19 @@ vec4 read_slot(Material m, int s, vec4 uv, vec4 uv_dx, vec4 uv_dy) {
   const vec2 p = vec2(dot(r0.xyz, vec3(t, 1.0)), dot(r1.xyz, vec3(t, 1.0)));
   const vec2 gx = vec2(dot(r0.xy, dx), dot(r1.xy, dx));
   const vec2 gy = vec2(dot(r0.xy, dy), dot(r1.xy, dy));
-  return textureGrad(slot_textures[nonuniformEXT(m.first_slot + s)], p, gx, gy);
+  // One texture at a time for the lanes that share it (a 4x4 block mostly holds one
+  // material): an index the same in every lane that reads takes lavapipe's one-call path,
+  // where a non-uniform one is sampled lane by lane.
+  const uint index = uint(m.first_slot + s);
+  vec4 texel = vec4(0.0);
+  for (;;) {
+    const uint first = subgroupBroadcastFirst(index);
+    if (first == index) {
+      texel = textureGrad(slot_textures[first], p, gx, gy);
+      break;
+    }
+  }
+  return texel;
 }
 
 bool has_slot(Material m, uint bit) { return kTextures && (uint(m.alpha.z) & bit) != 0u; }

@@ -92,6 +92,15 @@ std::optional<std::string> VisibilityPass::unsupported(const gpu::Device& device
            " lacks shaderSampledImageArrayNonUniformIndexing, which the visibility pass's material reads need";
   if (!device.features().geometry_shader)
     return device.info().name + " lacks the geometryShader feature that gl_PrimitiveID in the visibility pass needs";
+  // The material reads take one texture at a time for the lanes that share it
+  // (visibility_shade.glsl's read_slot): subgroupBroadcastFirst in the fragment stage.
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  properties.pNext = &subgroup;
+  vkGetPhysicalDeviceProperties2(device.physical(), &properties);
+  if (!(subgroup.supportedStages & VK_SHADER_STAGE_FRAGMENT_BIT) ||
+      !(subgroup.supportedOperations & VK_SUBGROUP_FEATURE_BALLOT_BIT))
+    return device.info().name + " lacks subgroup ballot operations in fragment shaders, which the visibility pass's material reads use";
   const VkPhysicalDeviceLimits& l = device.limits();
   const std::uint64_t images = materials.slot_images().size() + 1;  // + the ids
   const std::uint64_t most = std::min({l.maxPerStageDescriptorSampledImages, l.maxPerStageDescriptorSamplers,

@@ -5,9 +5,10 @@
 // full-screen triangle per view shades each pixel once (visibility_shade.glsl): it reads the
 // triangles of its samples back from the scene's vertex and index buffers, evaluates the
 // material (textures picked per pixel from one array, so the device needs non-uniform
-// sampled-image indexing) and lights it exactly as the forward shader does, and writes the
-// mean over its samples, so the resolve is unchanged. glTF BLEND instances then go through the
-// forward pass's transparent pass (ForwardPass::record_transparent) over this depth.
+// sampled-image indexing, and subgroup ballot for read_slot's loop) and lights it exactly as
+// the forward shader does, and writes the mean over its samples, so the resolve is
+// unchanged. glTF BLEND instances then go through the forward pass's transparent pass
+// (ForwardPass::record_transparent) over this depth.
 //
 // Why: lavapipe shades fragments in 4x4 blocks with a coverage mask, so the forward pass's
 // small triangles leave most lanes idle, and every layer of overdraw that survives the early
@@ -16,11 +17,23 @@
 // pixels. Process CPU of full shading / trivial floor (bench/raster_views --shading-pass both,
 // 420x560, MSAA 4, per-view, culling, one run at load 8-9): Sponza 3.03x against the forward
 // pass's 3.78x (1 view), 2.43x against 3.19x (4 views); Breakfast room 2.74x against 3.14x,
-// 2.67x against 3.14x. What keeps it above 2x is the second shading of pixels whose samples
-// hold two triangles: shading the first alone measured 1.9x, but with Sponza's pixel-sized
-// triangles most 4x4 blocks hold such a pixel, and a block shades twice when one of its
-// pixels needs it. (Merging a pixel's triangles that lie on one smooth surface did not pay:
-// the test costs about what it saves.)
+// 2.67x against 3.14x. Shading only each pixel's first triangle measured 1.9x; the rest is
+// the further triangles of edge pixels (a third of Sponza's pixels at 420x560, MSAA 4).
+// Listing the edge pixels in a compute pass and shading their further triangles there with
+// full lanes (branch s19-compact-experiment) gave the same images and the same ratios within
+// the noise (4 views, load 9-12: Sponza 2.28x and 2.34x against 2.22x and 2.45x, Breakfast
+// room 2.61x and 2.44x against 2.69x and 2.72x): there an edge pixel cost about three times a
+// pixel's first shading in this pass (lavapipe's compute path, or neighbouring work items
+// from unrelated triangles and materials), so the lanes it saved were spent. A fragment pass over
+// a compact image (16 edge pixels to a full 4x4 block) instead did no better either. Of the terms, the material textures cost most: without
+// them 2.2x against 3.2x, without direct lights 2.9x, without probe light 3.0x, without
+// shadows or specular probes 3.2x (one view, load 9-10). The forward pass, whose textures
+// are bound per draw, pays less for them (2.9-3.1x without against 3.7x), so the material
+// reads take one texture at a time for the lanes that share it (visibility_shade.glsl's
+// read_slot): the same pixels, 3.01x against 3.20x (Sponza, 1 view, mean of five interleaved
+// runs at load 6-7). textureLod instead of textureGrad changed nothing measurable. (Merging a
+// pixel's triangles that lie on one smooth surface did not pay: the test costs about what it
+// saves.)
 //
 // Recording: per-view and layered as ViewMethod says; multiview draws the geometry per view
 // (lavapipe's multiview is not trustworthy, raster/view_method.h, and the shading is per view
