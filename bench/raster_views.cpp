@@ -35,7 +35,8 @@
 //
 // Prints one CSV row per method x culling x shading x N (configurations interleaved frame by frame): median over the frames of the whole frame
 // (record + GPU + readback), the forward pass's GPU time (timestamps), the CPU recording time,
-// and the triangles and draw calls the culling left.
+// the triangles and draw calls the culling left, and the readback's share of the frame (which
+// `ddish render` pays only on the frames it writes).
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -169,7 +170,7 @@ int main(int argc, char** argv) try {
               [&] { std::size_t t = 0; for (const auto& m : s.meshes) t += m.triangle_count(); return t; }(),
               width, height, device.info().name.c_str(), frames, anisotropy);
   std::printf("method,cull,shading,prepass,shading_pass,views,passes,frame_ms,ms_per_view,forward_gpu_ms,record_ms,"
-              "cpu_ms,triangles,draws\n");
+              "cpu_ms,triangles,draws,readback_ms\n");
   // Every configuration renders each frame in turn (paired runs): on a shared machine the load
   // changes from minute to minute, and interleaving spreads it evenly over the configurations.
   struct Config {
@@ -179,7 +180,7 @@ int main(int argc, char** argv) try {
     bool prepass;
     raster::ShadingPass pass;
     std::unique_ptr<raster::Renderer> renderer;
-    std::vector<double> frame, gpu, record, cpu;
+    std::vector<double> frame, gpu, record, cpu, readback;
     raster::FrameStats last;
   };
   std::vector<Config> configs;
@@ -238,6 +239,7 @@ int main(int argc, char** argv) try {
       c.gpu.clear();
       c.record.clear();
       c.cpu.clear();
+      c.readback.clear();
     }
     for (int f = 0; f < frames; ++f)
       for (Config& c : configs) {
@@ -250,16 +252,17 @@ int main(int argc, char** argv) try {
         c.frame.push_back(st.record_ms + st.execute_ms + st.readback_ms);
         c.gpu.push_back(st.forward_gpu_ms);
         c.record.push_back(st.record_ms);
+        c.readback.push_back(st.readback_ms);
       }
     for (const Config& c : configs) {
       const double ms = median(c.frame);
-      std::printf("%s,%s,%s,%s,%s,%d,%u,%.2f,%.2f,%.2f,%.2f,%.2f,%llu,%llu\n",
+      std::printf("%s,%s,%s,%s,%s,%d,%u,%.2f,%.2f,%.2f,%.2f,%.2f,%llu,%llu,%.2f\n",
                   std::string(raster::to_string(c.method)).c_str(), c.cull ? "on" : "off",
                   std::string(raster::to_string(c.shading)).c_str(), c.prepass ? "on" : "off",
                   std::string(raster::to_string(c.pass)).c_str(), n,
                   c.last.forward_passes, ms, ms / n, median(c.gpu), median(c.record), median(c.cpu),
                   static_cast<unsigned long long>(c.last.cull.triangles_drawn),
-                  static_cast<unsigned long long>(c.last.cull.draws));
+                  static_cast<unsigned long long>(c.last.cull.draws), median(c.readback));
     }
     std::fflush(stdout);
   }

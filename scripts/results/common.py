@@ -100,23 +100,30 @@ def write_csv(path, header, rows):
 
 def frame_stats(timings):
     """Median stage times over the steady frames: frame 0 (pipelines, first upload of every probe)
-    is left out; the file output (the last frame's, or every frame's with --every) is not part of
-    the frame time and is reported on its own."""
+    is left out. The file output is not part of the frame time and is reported on its own: the
+    last frame's hand-over to the writer plus the wait for the writer after the loop
+    ("output_drain"). Neither is the readback: `ddish render` reads back only the frames it writes
+    (the last, or every one with --every), so a frame's time is that of a displayed frame, and
+    the last frame's readback is reported on its own."""
     frames = timings["frames"]
     steady = frames[1:] or frames
     def stage(name, fr):
         return median([f["stages_ms"].get(name, 0.0) for f in fr])
-    raster_names = ["raster_record", "shadow_gpu", "forward_gpu", "tonemap_gpu", "raster_wait",
-                    "readback"]
+    def off_frame(f):
+        st = f["stages_ms"]
+        return st.get("output", 0.0) + st.get("output_drain", 0.0) + st.get("readback", 0.0)
+    raster_names = ["raster_record", "shadow_gpu", "forward_gpu", "tonemap_gpu", "raster_wait"]
     raster = median([sum(f["stages_ms"].get(n, 0.0) for n in raster_names) for f in steady])
-    frame = median([f["total_ms"] - f["stages_ms"].get("output", 0.0) for f in steady])
+    frame = median([f["total_ms"] - off_frame(f) for f in steady])
+    last = frames[-1]["stages_ms"]
     return {
         "probe_update_ms": stage("probe_update", steady),
         "upload_ms": stage("upload", steady),
         "raster_ms": raster,
         "forward_gpu_ms": stage("forward_gpu", steady),
         "frame_ms": frame,
-        "output_ms": frames[-1]["stages_ms"].get("output", float("nan")),
+        "output_ms": (last["output"] + last.get("output_drain", 0.0)) if "output" in last else float("nan"),
+        "readback_ms": last.get("readback", float("nan")),
         "probe_rays": median([f.get("probe_rays", float("nan")) for f in steady]),
         "probe_updates": median([f.get("probe_updates", float("nan")) for f in steady]),
         "views": frames[-1].get("views", 1),

@@ -12,7 +12,7 @@ import statistics
 import struct
 from pathlib import Path
 
-from common import (ROOT, StepFailed, compare_many, fmt, log, only_exr, plot, reference, render,
+from common import (ROOT, StepFailed, compare_many, fmt, frame_stats, log, only_exr, plot, reference, render,
                     write_csv)
 
 
@@ -264,7 +264,7 @@ def section_dynamic(runner, cfg, scenes, cache, results_dir, report):
             report.append(f"**Dynamic {name}: {err}**\n")
             log(str(err))
             continue
-        frame_ms = statistics.median([f["total_ms"] - f["stages_ms"].get("output", 0.0) for f in t["frames"][1:]])
+        frame_ms = frame_stats(t)["frame_ms"]
         # The share of the full-rate paths (every active probe, full samples) traced per frame.
         shares = []
         for f in t["frames"][1:]:
