@@ -159,7 +159,7 @@ def headline(outcome):
     lines = ["## Headline figures\n"]
     scaling = outcome.get("viewport scaling")
     if scaling:
-        rows, _trace = scaling
+        rows, _trace, overhead = scaling
         for key in dict.fromkeys(r["scene"] for r in rows):
             rs = {r["views"]: r for r in rows if r["scene"] == key}
             lo, hi = min(rs), max(rs)
@@ -170,6 +170,10 @@ def headline(outcome):
                          f"{fmt(rs[hi].get('speedup_vs_naive'), 2)}× at {hi} views"
                          + (f", {fmt(rs[32].get('speedup_vs_naive'), 2)}× at 32" if 32 in rs and hi != 32 else "")
                          + ".")
+        if overhead:
+            lines.append(f"- Output: writing every frame of a {overhead['frames']}-frame {overhead['views']}-view "
+                         f"{SCENE_NAMES[overhead['scene']]} run adds {fmt(100 * overhead['overhead'], 1)} % to its "
+                         f"wall time ({fmt(overhead['last_s'], 1)} s → {fmt(overhead['every_s'], 1)} s).")
     err = outcome.get("error against run time")
     if err:
         for key, s in err.items():

@@ -22,6 +22,9 @@ FULL = {
     "scaling_msaa": 4,
     "scaling_frames": 3,
     "raster_floor_frames": 2,
+    # Issue 20's output goal: a 10-frame 48-view Sponza run with --every against the same run
+    # writing only the last frame (about 1.5 min each on the quiet 2-core box).
+    "output_overhead": {"scene": "sponza", "views": 48, "frames": 10},
     "trace_floor": {"samples": 256, "updates": 3, "repeat": 3},
     "error_scenes": {
         "cornell": {"size": (160, 160), "ref_spp": 1024},
@@ -83,6 +86,7 @@ QUICK = {
     "scaling_msaa": 1,
     "scaling_frames": 3,
     "raster_floor_frames": 1,
+    "output_overhead": {"scene": "cornell", "views": 4, "frames": 3},
     "trace_floor": {"samples": 16, "updates": 2, "repeat": 1},
     "error_scenes": {"cornell": {"size": (48, 48), "ref_spp": 32}},
     "error_frames": 4,

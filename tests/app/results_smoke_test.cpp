@@ -128,11 +128,13 @@ TEST(ResultsSmoke, QuickReportHasEverySectionAndFiniteFigures) {
                               "## 4. Probe scheduling", "## 6. Soak"})
     EXPECT_NE(md.find(heading), std::string::npos) << "RESULTS.md lacks " << heading;
   EXPECT_EQ(md.find("failed"), std::string::npos) << "a step failed:\n" << md;
+  EXPECT_NE(md.find("- Output: writing every frame"), std::string::npos)
+      << "the headline lacks the output overhead:\n" << md;
 
   const fs::path results = dir / "report" / "results";
   expect_finite(read_csv(results / "scaling_cornell.csv"),
-                {"views", "probe_update_ms", "upload_ms", "raster_ms", "frame_ms", "naive_ms",
-                 "speedup_vs_naive"},
+                {"views", "probe_update_ms", "upload_ms", "raster_ms", "frame_ms", "readback_ms",
+                 "naive_ms", "speedup_vs_naive"},
                 "scaling_cornell.csv");
   expect_finite(read_csv(results / "error_cornell.csv"), {"ms_per_frame", "psnr", "ssim", "rmse"},
                 "error_cornell.csv");
