@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "trace/cpu_dispatch.h"
 #include "trace/ggx.h"
 #include "trace/sampling.h"
 #include "trace/specular_albedo.h"
@@ -106,6 +107,7 @@ glm::vec3 Bsdf::eval_specular(const glm::vec3& wo, const glm::vec3& wi) const {
   return fresnel * (ggx.d(h) * ggx.visibility(wo, wi));
 }
 
+DDISH_CPU_DISPATCH
 glm::vec3 Bsdf::eval(const glm::vec3& wo, const glm::vec3& wi) const {
   return eval_diffuse(wo, wi) + eval_specular(wo, wi);
 }
@@ -126,12 +128,14 @@ float Bsdf::pdf(const glm::vec3& wo, const glm::vec3& wi) const {
   return mixture_pdf(wo, wi, specular_probability(wo));
 }
 
+DDISH_CPU_DISPATCH
 float Bsdf::mixture_pdf(const glm::vec3& wo, const glm::vec3& wi, float p_specular) const {
   const glm::vec3 h = glm::normalize(wo + wi);
   const float pdf_specular = Ggx(alpha_).reflected_pdf(wo, h);
   return p_specular * pdf_specular + (1.0f - p_specular) * cosine_hemisphere_pdf(wi.z);
 }
 
+DDISH_CPU_DISPATCH
 bool Bsdf::sample(const glm::vec3& wo, const glm::vec3& u, BsdfSample& out) const {
   if (wo.z <= 0.0f) {
     return false;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "scene/scene.h"
+#include "trace/cpu_dispatch.h"
 #include "trace/texture_lookup.h"
 
 namespace ddish::trace {
@@ -59,12 +60,14 @@ glm::vec2 apply_transform(const scene::TextureTransform& xf, glm::vec2 uv) {
 
 }  // namespace
 
+DDISH_CPU_DISPATCH
 WorldTriangle world_triangle(const scene::Mesh& mesh, const glm::mat4& xf, int prim) {
   const std::uint32_t* idx = &mesh.indices[static_cast<std::size_t>(prim) * 3];
   auto w = [&](std::uint32_t i) { return glm::vec3(xf * glm::vec4(mesh.positions[i], 1.0f)); };
   return {w(idx[0]), w(idx[1]), w(idx[2])};
 }
 
+DDISH_CPU_DISPATCH
 WorldTriangle world_triangle(const TriangleRecord& tri, const glm::mat4& xf) {
   auto w = [&](const glm::vec3& p) { return glm::vec3(xf * glm::vec4(p, 1.0f)); };
   return {w(tri.p[0]), w(tri.p[1]), w(tri.p[2])};
@@ -118,6 +121,7 @@ float alpha_at(const scene::Material& material, const TextureSet& textures, cons
   return alpha;
 }
 
+DDISH_CPU_DISPATCH
 SurfacePoint make_surface_point(const HitInput& hit, const TextureSet& textures) {
   const scene::Mesh& mesh = *hit.mesh;
   const scene::Material& mat = *hit.material;

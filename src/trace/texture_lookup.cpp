@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 
 #include "scene/scene.h"
+#include "trace/cpu_dispatch.h"
 
 namespace ddish::trace {
 
@@ -116,6 +117,7 @@ glm::vec4 MipTexture::texel(int level, int x, int y, bool srgb, Wrap wrap) const
                 srgb);
 }
 
+DDISH_CPU_DISPATCH
 glm::vec4 MipTexture::sample_level(glm::vec2 uv, int level, bool srgb, Wrap wrap,
                                    scene::Filter filter) const {
   const Level& l = levels_[static_cast<std::size_t>(level)];
@@ -145,6 +147,7 @@ glm::vec4 MipTexture::sample_level(glm::vec2 uv, int level, bool srgb, Wrap wrap
   return glm::mix(a, b, ty);
 }
 
+DDISH_CPU_DISPATCH
 glm::vec4 MipTexture::sample(glm::vec2 uv, float lod, bool srgb, Wrap wrap) const {
   const float max_level = static_cast<float>(levels() - 1);
   lod = std::isfinite(lod) ? std::clamp(lod, 0.0f, max_level) : 0.0f;

@@ -25,6 +25,7 @@
 
 #include "scene/scene.h"
 #include "trace/bsdf.h"
+#include "trace/cpu_dispatch.h"
 #include "trace/embree_scene.h"
 #include "trace/environment_light.h"
 #include "trace/lights.h"
@@ -91,6 +92,7 @@ void Tracer::set_ray_recorder(RayRecorder* recorder) { impl_->embree.set_recorde
 const EmbreeScene& Tracer::embree_scene() const { return impl_->embree; }
 std::uint64_t Tracer::invalid_paths() const { return impl_->invalid.load(std::memory_order_relaxed); }
 
+DDISH_CPU_DISPATCH
 PathSample Tracer::trace_path(const Ray& primary, Sampler& sampler) const {
   const Impl& im = *impl_;
   const scene::Scene& scene = *im.scene;
