@@ -6,6 +6,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   cmake ninja-build g++ pkg-config git
+  # compiler cache: .ci/run and scripts/sanitize.sh use it where it is installed
+  ccache
   # Vulkan: loader, headers, CPU driver (lavapipe), validation layers, GLSL compiler
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-tools spirv-tools
   # math, scenes, images, options, logging, compression
