@@ -10,6 +10,7 @@ import shutil
 import statistics
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -30,12 +31,42 @@ class StepFailed(Exception):
 # ---------------------------------------------------------------------------------------------
 # Running the binaries.
 
+def run_child(args, timeout, env):
+    """Runs one command from the checkout's root. Returns (exit code, stdout, stderr, peak resident
+    memory in KiB): the child's own ru_maxrss from wait4, which getrusage(RUSAGE_CHILDREN), a
+    maximum over every child so far, cannot give (it includes the forked Python's pages before
+    exec, about 20 MB, far below any render's). The exit code is None when it ran past `timeout`
+    seconds (it is then killed)."""
+    proc = subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            cwd=ROOT, env=env)
+    streams = {}
+    readers = [threading.Thread(target=lambda n=n, f=f: streams.__setitem__(n, f.read()))
+               for n, f in (("out", proc.stdout), ("err", proc.stderr))]
+    for r in readers:
+        r.start()
+    expired = threading.Event()
+    timer = threading.Timer(timeout, lambda: (expired.set(), proc.kill()))
+    timer.start()
+    try:
+        _, status, usage = os.wait4(proc.pid, 0)
+    finally:
+        timer.cancel()
+    for r in readers:
+        r.join()
+    proc.stdout.close()
+    proc.stderr.close()
+    proc.returncode = os.waitstatus_to_exitcode(status)  # reaped here: Popen must not wait again
+    return (None if expired.is_set() else proc.returncode, streams.get("out", ""), streams.get("err", ""),
+            usage.ru_maxrss)
+
+
 class Runner:
     def __init__(self, build, work, commands_file):
         self.build = build
         self.work = work
         self.commands = []
         self.commands_file = commands_file
+        self.last_peak_kib = None  # peak resident memory of the last command run (KiB)
 
     def exe(self, name):
         for p in (self.build / name, self.build / "bench" / name):
@@ -49,17 +80,15 @@ class Runner:
                          [self.show(a) for a in args])
         self.commands.append(shown)
         t0 = time.monotonic()
-        try:
-            proc = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                                  timeout=timeout, cwd=ROOT,
-                                  env=dict(os.environ, **{k: str(v) for k, v in env.items()}) if env else None)
-        except subprocess.TimeoutExpired:
+        returncode, stdout, stderr, self.last_peak_kib = run_child(
+            args, timeout, dict(os.environ, **{k: str(v) for k, v in env.items()}) if env else None)
+        if returncode is None:
             raise StepFailed(f"{what}: timed out after {timeout} s: {shown}")
-        if proc.returncode != 0:
-            tail = (proc.stderr or proc.stdout).strip().splitlines()[-3:]
-            raise StepFailed(f"{what}: exit {proc.returncode}: {shown}: {' | '.join(tail)}")
+        if returncode != 0:
+            tail = (stderr or stdout).strip().splitlines()[-3:]
+            raise StepFailed(f"{what}: exit {returncode}: {shown}: {' | '.join(tail)}")
         log(f"{what} ({time.monotonic() - t0:.1f} s)")
-        return proc.stdout
+        return stdout
 
     def show(self, a):
         for base, name in ((self.work, "$WORK"), (self.build, "$BUILD"), (ROOT, ".")):

@@ -21,13 +21,14 @@ def output_overhead(runner, cfg, scenes, report):
     W, H = cfg["scaling_tile"]
     args = ["--display", "looking-glass-portrait", "--views", o["views"], "--width", W, "--height", H,
             "--msaa", cfg["scaling_msaa"], "--frames", o["frames"]]
-    walls = {}
+    walls, peaks = {}, {}
     try:
         for name, extra in (("last frame", []), ("every frame", ["--every"])):
             out = runner.work / f"output_{key}_{name.split()[0]}"
             t0 = time.monotonic()
             t = render(runner, path, out, [*args, *extra], f"output overhead {key}, {name}")
             walls[name] = (time.monotonic() - t0, sum(1 for f in t["frames"] if f.get("read_back")))
+            peaks[name.split()[0]] = runner.last_peak_kib / 1024.0
             shutil.rmtree(out, ignore_errors=True)
     except StepFailed as e:
         report.append(f"**Output overhead: failed: {e}**\n")
@@ -42,4 +43,4 @@ def output_overhead(runner, cfg, scenes, report):
         f"{fmt(every, 1)} s, so output adds **{fmt(100 * overhead, 1)} %** (one pair of runs; the "
         f"writer thread encodes while the next frames render).\n")
     return {"scene": key, "views": o["views"], "frames": o["frames"], "last_s": last, "every_s": every,
-            "overhead": overhead}
+            "overhead": overhead, "peak_mb": peaks}

@@ -159,7 +159,7 @@ def headline(outcome):
     lines = ["## Headline figures\n"]
     scaling = outcome.get("viewport scaling")
     if scaling:
-        rows, _trace, overhead = scaling
+        rows, _trace, overhead, mem = scaling
         for key in dict.fromkeys(r["scene"] for r in rows):
             rs = {r["views"]: r for r in rows if r["scene"] == key}
             lo, hi = min(rs), max(rs)
@@ -174,6 +174,16 @@ def headline(outcome):
             lines.append(f"- Output: writing every frame of a {overhead['frames']}-frame {overhead['views']}-view "
                          f"{SCENE_NAMES[overhead['scene']]} run adds {fmt(100 * overhead['overhead'], 1)} % to its "
                          f"wall time ({fmt(overhead['last_s'], 1)} s → {fmt(overhead['every_s'], 1)} s).")
+        if mem:
+            one, hi = mem["views"][0], mem["views"][-1]
+            line = (f"- Memory: each view beyond a full batch adds {fmt(mem['bytes_per_pixel'])} bytes per quilt "
+                    f"pixel to the peak resident memory ({SCENE_NAMES[mem['scene']]}: {fmt(mem['peak_mb'][one])} MB "
+                    f"at {one} view, {fmt(mem['peak_mb'][hi])} MB at {hi})")
+            if mem.get("large"):
+                L = mem["large"]
+                line += (f"; the {L['display']} quilt ({L['views']} views of {L['tile'][0]}x{L['tile'][1]}) "
+                         f"peaks at {fmt(L['peak_mb'])} MB, {fmt(L['bytes_per_pixel'])} bytes per extra pixel")
+            lines.append(line + ".")
     err = outcome.get("error against run time")
     if err:
         for key, s in err.items():

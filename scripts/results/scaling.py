@@ -6,6 +6,7 @@ import shutil
 import time
 
 from common import SCENE_NAMES, StepFailed, fmt, frame_stats, log, plot, render, write_csv
+from memory import memory
 from output_overhead import output_overhead
 from drivers import driver_rows
 
@@ -178,6 +179,7 @@ def section_scaling(runner, cfg, scenes, results_dir, report):
         else:
             report.append(f"Tracing floor: {trace_note}.\n")
     overhead = output_overhead(runner, cfg, scenes, report)
+    mem = memory(runner, cfg, scenes, report, overhead)
     if floor_rows:
         keys = list(floor_rows[0].keys())
         write_csv(results_dir / "raster_views.csv", keys, floor_rows)
@@ -188,4 +190,4 @@ def section_scaling(runner, cfg, scenes, results_dir, report):
         report.append("Tracing floor per scene: [results/trace_floor.csv](results/trace_floor.csv).\n")
     if cfg["mode"] == "full":
         driver_rows(runner, cfg, scenes, results_dir, report)
-    return rows_all, trace_rows, overhead
+    return rows_all, trace_rows, overhead, mem

@@ -25,6 +25,10 @@ FULL = {
     # Issue 20's output goal: a 10-frame 48-view Sponza run with --every against the same run
     # writing only the last frame (about 1.5 min each on the quiet 2-core box).
     "output_overhead": {"scene": "sponza", "views": 48, "frames": 10},
+    # Issue 20's memory goal: single-frame renders of the rig at 1, 8 and 48 views, and the 65"
+    # panel's 72 views of 1024x910 against one of its views (about 4 min in all).
+    "memory": {"scene": "sponza", "views": (1, 8, 48),
+               "large": {"display": "looking-glass-65", "views": 72, "tile": (1024, 910)}},
     "trace_floor": {"samples": 256, "updates": 3, "repeat": 3},
     "error_scenes": {
         "cornell": {"size": (160, 160), "ref_spp": 1024},
@@ -87,6 +91,8 @@ QUICK = {
     "scaling_frames": 3,
     "raster_floor_frames": 1,
     "output_overhead": {"scene": "cornell", "views": 4, "frames": 3},
+    "memory": {"scene": "cornell", "views": (1, 2, 4),
+               "large": {"display": "looking-glass-65", "views": 72, "tile": (32, 28)}},
     "trace_floor": {"samples": 16, "updates": 2, "repeat": 1},
     "error_scenes": {"cornell": {"size": (48, 48), "ref_spp": 32}},
     "error_frames": 4,

@@ -49,7 +49,7 @@ RasterFrameViews::RasterFrameViews(std::span<const raster::ViewImage> views) : v
 void RasterFrameViews::linear_row(std::size_t view, int y, float* rgb) const {
   const raster::ViewImage& v = views_[view];
   const std::size_t w = std::size_t(v.width);
-  std::memcpy(rgb, &v.linear[std::size_t(y) * w].x, 3 * w * sizeof(float));
+  v.linear.read(std::size_t(y) * w, w, rgb);
 }
 
 void RasterFrameViews::display_row(std::size_t view, int y, std::uint8_t* rgb) const {

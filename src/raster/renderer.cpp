@@ -13,7 +13,6 @@
 #include "probes/probe_volume.h"
 #include "scene/scene.h"
 #include "scene/view.h"
-#include "sh/packing.h"
 
 namespace ddish::raster {
 
@@ -245,8 +244,8 @@ std::uint32_t Renderer::fit_memory(std::uint32_t width, std::uint32_t height, st
                         ": lower the view size or --msaa");
   batch = static_cast<std::uint32_t>(std::min<std::uint64_t>(batch, room / per_view));
   if (read_back) {
-    // The frame's images on the host: linear RGB floats and packed display pixels.
-    const std::uint64_t host = std::uint64_t{width} * height * views * (sizeof(glm::vec3) + 4);
+    // The frame's images on the host: linear RGB halves and packed display pixels.
+    const std::uint64_t host = std::uint64_t{width} * height * views * (3 * sizeof(std::uint16_t) + 4);
     const std::uint64_t free = io::host_memory_available();
     if (host > free)
       throw gpu::GpuError(std::to_string(views) + " views of " + size + " need " + io::format_bytes(host) +
@@ -291,11 +290,11 @@ void Renderer::read_views(std::uint32_t w, std::uint32_t h, std::uint32_t count,
     ViewImage img;
     img.width = static_cast<int>(w);
     img.height = static_cast<int>(h);
-    img.linear.resize(per_view);
+    img.linear = HalfRgbPixels(per_view);
     const std::uint16_t* src = halves + per_view * 4 * v;
-    for (std::size_t i = 0; i < per_view; ++i)
-      img.linear[i] = {sh::half_to_float(src[4 * i]), sh::half_to_float(src[4 * i + 1]),
-                       sh::half_to_float(src[4 * i + 2])};
+    std::uint16_t* dst = img.linear.halves();
+    for (std::size_t i = 0; i < per_view; ++i)  // RGBA to RGB: alpha is always 1
+      for (int c = 0; c < 3; ++c) dst[3 * i + c] = src[4 * i + c];
     img.display.assign(display + per_view * v, display + per_view * (v + 1));
     out.views.push_back(std::move(img));
   }

@@ -24,6 +24,7 @@
 #include "raster/environment_background.h"
 #include "raster/forward_pass.h"
 #include "raster/frame_resources.h"
+#include "raster/half_rgb_pixels.h"
 #include "raster/gpu_meshes.h"
 #include "raster/material_textures.h"
 #include "raster/probe_textures.h"
@@ -85,7 +86,7 @@ struct RendererOptions {
   // Views drawn per submission into one reused target: 0 picks the most whose target and
   // readback fit kBatchTargetBytes (at least one; a multiple of a multiview pass). The
   // device memory of a frame then stops growing with the views (48 views of 420x560 at
-  // MSAA 4 draw in three batches of 16); only the read-back images grow, 16 bytes a pixel.
+  // MSAA 4 draw in three batches of 16); only the read-back images grow, 10 bytes a pixel.
   std::uint32_t batch_views = 0;
   static constexpr std::uint64_t kBatchTargetBytes = 256ull << 20;
   // On a CPU device (lavapipe) each pass's binned triangles stay in memory until its submission
@@ -101,7 +102,7 @@ struct RendererOptions {
 struct ViewImage {
   int width = 0;
   int height = 0;
-  std::vector<glm::vec3> linear;        // row 0 at the top, linear radiance
+  HalfRgbPixels linear;                 // row 0 at the top, linear radiance (the target's halves)
   std::vector<std::uint32_t> display;   // packed RGBA8 (R in the low byte), sRGB-encoded
 };
 

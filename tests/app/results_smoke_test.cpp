@@ -130,6 +130,8 @@ TEST(ResultsSmoke, QuickReportHasEverySectionAndFiniteFigures) {
   EXPECT_EQ(md.find("failed"), std::string::npos) << "a step failed:\n" << md;
   EXPECT_NE(md.find("- Output: writing every frame"), std::string::npos)
       << "the headline lacks the output overhead:\n" << md;
+  EXPECT_NE(md.find("- Memory: each view beyond a full batch adds"), std::string::npos)
+      << "the headline lacks the memory figure:\n" << md;
 
   const fs::path results = dir / "report" / "results";
   expect_finite(read_csv(results / "scaling_cornell.csv"),

@@ -39,7 +39,7 @@ constexpr double kMinPsnrMargin = 10.0;   // dB better than without probes
 
 metrics::Image to_image(const ViewImage& v) {
   metrics::Image img(v.width, v.height);
-  img.pixels() = v.linear;
+  img.pixels() = v.linear.to_floats();
   return img;
 }
 

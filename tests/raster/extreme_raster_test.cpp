@@ -262,7 +262,7 @@ TEST_F(ExtremeRasterTest, ZeroAreaTrianglesChangeNothing) {
     options.msaa = 1;
     Renderer renderer(device(), s, volume, options);
     const scene::View view = front_view();
-    return renderer.render(s, std::span(&view, 1)).views[0].linear;
+    return renderer.render(s, std::span(&view, 1)).views[0].linear.to_floats();
   };
   const std::vector<glm::vec3> plain = render(false), degenerate = render(true);
   ASSERT_EQ(plain.size(), degenerate.size());

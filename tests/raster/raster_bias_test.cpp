@@ -63,7 +63,7 @@ TEST_F(RasterBiasTest, SunHighlightOnSmallGlossySphereMatchesPixelAverage) {
     ro.seed = 3;
     const trace::ReferenceImage ref = trace::render_reference(tracer, view, ro);
     const FrameOutput out = renderer.render(s, std::span(&view, 1));
-    const std::vector<glm::vec3>& img = out.views[0].linear;
+    const std::vector<glm::vec3> img = out.views[0].linear.to_floats();
     ASSERT_EQ(img.size(), ref.pixels.size());
 
     std::size_t peak = 0;
