@@ -1,5 +1,5 @@
 // ddish render SCENE [--display single|stereo|PROFILE] [--views N] [--focal-distance M]
-//                    [--per-view] [--calibration FILE.json]
+//                    [--per-view] [--formats png,exr] [--calibration FILE.json]
 //                    [--camera NODE|eye,target,up] [--fov DEG] [--width W --height H]
 //                    [--frames N] [--every[=N]] [--loop] [--fps F] [--time T] [--out DIR] [--timings FILE]
 //                    [--grid X,Y,Z|auto] [--probe-spacing M] [--sh-order 1..4]
@@ -106,6 +106,7 @@ struct RenderArgs {
   CameraArgs view{.width = 512, .height = 512};
   DisplayArgs display;
   bool per_view = false;
+  std::vector<std::string> formats{"png", "exr"};  // --formats
   std::string calibration;
   ProbeArgs probe;
   LightingArgs lighting;
@@ -138,6 +139,10 @@ struct RenderArgs {
   WarmupOptions warmup;  // render: on by default; view: its probes come from the server
   const char* tag() const { return connect.empty() ? "render" : "view"; }
 };
+
+bool writes_format(const RenderArgs& a, const char* format) {
+  return std::find(a.formats.begin(), a.formats.end(), format) != a.formats.end();
+}
 
 void check(const RenderArgs& a) {
   if (a.scene.empty()) throw std::invalid_argument("scene is required (see ddish --help)");  // as CLI11 says it
@@ -322,6 +327,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
   // Ctrl-C: this frame is the last one, written whole; the window's close does the same.
   options.stop = controls ? &controls->stop() : &stop_flag();
   if (live) options.render_request = live->request(files);
+  options.render_request.linear = writes_format(a, "exr");  // only EXRs hold the linear pixels
   // The frames whose files are written: with the window the sink gets every frame (to present
   // it), but only these come back to the CPU (FrameLoopOptions::read_back).
   const auto writes = [&](int k, bool last) {
@@ -403,7 +409,9 @@ int run_render(const RenderArgs& a) {
   const FrameWriter writer(first, {.dir = a.out,
                                    .stem = fs::path(a.scene).stem().string(),
                                    .per_view = a.per_view,
-                                   .calibration = calibration});
+                                   .calibration = calibration,
+                                   .png = writes_format(a, "png"),
+                                   .exr = writes_format(a, "exr")});
 
   // Said once the views and outputs are known to be good: bad input gets its one error line only.
   if (!framing.empty()) std::fprintf(stderr, "%s: %s\n", a.tag(), framing.c_str());
@@ -452,7 +460,14 @@ void add_frame_options(CLI::App* cmd, RenderArgs& a) {
   cmd->add_option("scene", a.scene, "glTF 2.0 scene (.gltf or .glb)")->check(CLI::ExistingFile);
   add_camera_options(*cmd, a.view);
   add_display_options(*cmd, a.display);
-  cmd->add_flag("--per-view", a.per_view, "also write every view as DIR/view_NN.png and .exr");
+  cmd->add_flag("--per-view", a.per_view, "also write every view as DIR/view_NN.png and .exr (those of --formats)");
+  cmd->add_option("--formats", a.formats,
+                  "image files written, comma-separated: png (display values, tone-mapped), exr "
+                  "(linear radiance, half floats); a run that writes no EXR reads back no linear "
+                  "pixels (6 bytes a pixel less held per frame)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"png", "exr"}))
+      ->default_str("png,exr");
   cmd->add_option("--calibration", a.calibration,
                   "Looking Glass calibration (visual.json): also write the lenticular panel image")
       ->check(CLI::ExistingFile);

@@ -93,6 +93,7 @@ FrameWriter::FrameWriter(const display::ViewSet& set, OutputOptions options)
   if (options_.calibration && !quilt)
     throw std::invalid_argument(fmt::format(
         "--calibration interleaves a quilt; the {} display makes none", display::to_string(kind_)));
+  if (!options_.png && !options_.exr) throw std::invalid_argument("no output format: PNG, EXR or both");
 }
 
 std::string FrameWriter::atlas_name(const std::string& tag, const std::string& extension) const {
@@ -113,13 +114,17 @@ std::vector<fs::path> FrameWriter::write(const FrameViews& views, const std::str
   auto write_pair = [&](const std::string& stem, int width, int height,
                         const std::function<void(int y, std::uint8_t*)>& display_row,
                         const std::function<void(int y, float*)>& linear_row) {
-    const fs::path png = options_.dir / (stem + ".png");
-    const fs::path exr = options_.dir / (stem + ".exr");
-    metrics::write_png_rows(png, width, height, display_row);
-    metrics::write_exr_rows(exr, width, height, linear_row,
-                            views.linear_is_half() ? metrics::ExrPixels::half : metrics::ExrPixels::float32);
-    written.push_back(png);
-    written.push_back(exr);
+    if (options_.png) {
+      const fs::path png = options_.dir / (stem + ".png");
+      metrics::write_png_rows(png, width, height, display_row);
+      written.push_back(png);
+    }
+    if (options_.exr) {
+      const fs::path exr = options_.dir / (stem + ".exr");
+      metrics::write_exr_rows(exr, width, height, linear_row,
+                              views.linear_is_half() ? metrics::ExrPixels::half : metrics::ExrPixels::float32);
+      written.push_back(exr);
+    }
   };
   const int w = views.width(), h = views.height();
   auto view_pair = [&](const std::string& stem, std::size_t v) {

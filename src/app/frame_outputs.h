@@ -37,6 +37,10 @@ struct OutputOptions {
   std::string stem;  // names multi-view files: the scene file's stem
   bool per_view = false;
   std::optional<display::Calibration> calibration;
+  // The file formats written (--formats): PNG holds the display values, EXR the linear ones. The
+  // lenticular image of a calibration is a PNG and is written whenever a calibration is given.
+  bool png = true;
+  bool exr = true;
 };
 
 // One frame's views as the writer reads them, a row at a time (row 0 at the top), so that no
@@ -89,7 +93,8 @@ class LinearFrameViews final : public FrameViews {
 
 class FrameWriter {
  public:
-  // Throws std::invalid_argument when a calibration is given for a set that makes no quilt.
+  // Throws std::invalid_argument when a calibration is given for a set that makes no quilt, or
+  // when neither PNG nor EXR is asked for.
   FrameWriter(const display::ViewSet& set, OutputOptions options);
 
   // Writes the frame; `single` names the file of a single-view set, `tag` (may be empty) is

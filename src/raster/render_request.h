@@ -44,6 +44,9 @@ struct BatchViews {
 struct RenderRequest {
   // false: FrameOutput::views keep their sizes but no pixels (nothing is converted on the CPU).
   bool read_back = true;
+  // With read_back, false: only the display pixels are converted; ViewImage::linear stays empty
+  // (a caller that writes no EXR holds 4 bytes a pixel instead of 10).
+  bool linear = true;
   // Recorded after each batch's tonemap, in the batch's command buffer. The writes of the copy
   // into hdr and of the tonemap into display are already made visible to compute, fragment and
   // transfer reads. The submission is synchronous: when render returns, the GPU has run it.

@@ -282,7 +282,8 @@ void Renderer::record_after_batch(VkCommandBuffer cmd, const RenderRequest& requ
                                       height});
 }
 
-void Renderer::read_views(std::uint32_t w, std::uint32_t h, std::uint32_t count, FrameOutput& out) const {
+void Renderer::read_views(std::uint32_t w, std::uint32_t h, std::uint32_t count, bool linear,
+                          FrameOutput& out) const {
   const std::size_t per_view = std::size_t(w) * h;
   const auto* halves = static_cast<const std::uint16_t*>(hdr_readback_.mapped());
   const auto* display = static_cast<const std::uint32_t*>(display_readback_.mapped());
@@ -290,11 +291,13 @@ void Renderer::read_views(std::uint32_t w, std::uint32_t h, std::uint32_t count,
     ViewImage img;
     img.width = static_cast<int>(w);
     img.height = static_cast<int>(h);
-    img.linear = HalfRgbPixels(per_view);
-    const std::uint16_t* src = halves + per_view * 4 * v;
-    std::uint16_t* dst = img.linear.halves();
-    for (std::size_t i = 0; i < per_view; ++i)  // RGBA to RGB: alpha is always 1
-      for (int c = 0; c < 3; ++c) dst[3 * i + c] = src[4 * i + c];
+    if (linear) {
+      img.linear = HalfRgbPixels(per_view);
+      const std::uint16_t* src = halves + per_view * 4 * v;
+      std::uint16_t* dst = img.linear.halves();
+      for (std::size_t i = 0; i < per_view; ++i)  // RGBA to RGB: alpha is always 1
+        for (int c = 0; c < 3; ++c) dst[3 * i + c] = src[4 * i + c];
+    }
     img.display.assign(display + per_view * v, display + per_view * (v + 1));
     out.views.push_back(std::move(img));
   }
@@ -378,7 +381,7 @@ FrameOutput Renderer::render(const scene::Scene& scene, std::span<const scene::V
       continue;
     }
     const auto t_read = std::chrono::steady_clock::now();
-    read_views(w, h, count, out);
+    read_views(w, h, count, request.linear, out);
     out.stats.readback_ms += ms_since(t_read);
   }
   return out;

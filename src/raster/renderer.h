@@ -178,8 +178,10 @@ class Renderer {
   void record_after_batch(VkCommandBuffer cmd, const RenderRequest& request,
                           std::uint32_t first_view, std::uint32_t count, std::uint32_t width,
                           std::uint32_t height) const;
-  // Converts the first `count` read-back views of the last submission into images.
-  void read_views(std::uint32_t width, std::uint32_t height, std::uint32_t count, FrameOutput& out) const;
+  // Converts the first `count` read-back views of the last submission into images (their linear
+  // pixels only when `linear`: RenderRequest::linear).
+  void read_views(std::uint32_t width, std::uint32_t height, std::uint32_t count, bool linear,
+                  FrameOutput& out) const;
   // Whether the shadow maps already hold `layers` for the scene as posed now.
   bool shadows_current(const scene::Scene& scene, const std::vector<ShadowLayerData>& layers) const;
 

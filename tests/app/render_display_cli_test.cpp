@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "display_cli.h"
+#include "metrics/image_io.h"
 
 namespace {
 
@@ -125,6 +126,36 @@ TEST_F(RenderDisplayCli, CalibrationWritesTheLenticularPanel) {
                  " --calibration " + calibration() + " --out " + path("out") + kFast);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(png_size(dir_ / "out" / "cornell_box_lenticular.png"), std::make_pair(60, 80));
+}
+
+// --formats writes only the formats named, quilt and views alike, and leaving one out changes
+// nothing in the other: without the EXR no linear pixels are read back, and the PNG bytes are
+// those of the run that wrote both (direct light only, so both runs draw the same image).
+TEST_F(RenderDisplayCli, FormatsWriteOnlyTheFilesNamedAndTheSameBytes) {
+  const std::string common = "render " + cornell() + " --display looking-glass-portrait --views 2 --width 12"
+                             " --height 16 --per-view --no-indirect" + kFast;
+  ASSERT_EQ(run(common + " --out " + path("both")).code, 0);
+  Result png = run(common + " --formats png --out " + path("png"));
+  ASSERT_EQ(png.code, 0) << png.err;
+  Result exr = run(common + " --formats exr --out " + path("exr"));
+  ASSERT_EQ(exr.code, 0) << exr.err;
+  for (const std::string stem : {"cornell_box_qs2x1a0.75", "view_0", "view_1"}) {
+    EXPECT_EQ(slurp(dir_ / "png" / (stem + ".png")), slurp(dir_ / "both" / (stem + ".png"))) << stem;
+    EXPECT_FALSE(fs::exists(dir_ / "png" / (stem + ".exr"))) << stem;
+    // The EXR header holds the time it was written: the pixels are compared.
+    EXPECT_EQ(ddish::metrics::read_image(dir_ / "exr" / (stem + ".exr")).pixels(),
+              ddish::metrics::read_image(dir_ / "both" / (stem + ".exr")).pixels()) << stem;
+    EXPECT_FALSE(fs::exists(dir_ / "exr" / (stem + ".png"))) << stem;
+  }
+  double sum = 0.0;  // the linear pixels that were read back are the image, not zeros
+  const ddish::metrics::Image view = ddish::metrics::read_image(dir_ / "both" / "view_1.exr");
+  for (const auto& p : view.pixels()) sum += p.x + p.y + p.z;
+  EXPECT_GT(sum, 0.0);
+
+  Result bad = run("render " + cornell() + " --formats png,jpg --out " + path("bad"));
+  EXPECT_EQ(bad.code, 2) << bad.err;
+  EXPECT_EQ(bad.err, "ddish: error: --formats: jpg not in {png,exr} (see ddish --help)\n");
+  EXPECT_FALSE(fs::exists(dir_ / "bad"));
 }
 
 TEST_F(RenderDisplayCli, BadDisplayOptionsAreOneLineExitTwo) {

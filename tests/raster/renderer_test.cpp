@@ -222,6 +222,16 @@ TEST_F(RendererTest, AfterBatchCommandsSeeEveryViewOnTheGpu) {
   }
   EXPECT_GT(kept.stats.tonemap_passes, 0u);
   EXPECT_EQ(kept.stats.readback_ms, 0.0);
+
+  // Display pixels only (a run that writes no EXR): the same display pixels, no linear ones.
+  RenderRequest display_only;
+  display_only.linear = false;
+  const FrameOutput shown = renderer.render(s, views, display_only);
+  ASSERT_EQ(shown.views.size(), views.size());
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    EXPECT_TRUE(shown.views[v].linear.empty()) << "view " << v;
+    EXPECT_EQ(shown.views[v].display, read.views[v].display) << "view " << v;
+  }
 }
 
 TEST_F(RendererTest, StaticShadowMapsAreKept) {
