@@ -182,11 +182,41 @@ vec3 shade(uvec2 id, uint view, vec2 q, vec2 pixel) {
                           normal_variance, occlusion);
 }
 
+// Whether triangle b continues triangle a's surface, so that the samples b covers can take a's
+// shading at the pixel centre (which extrapolates a's attributes there, as the forward pass
+// does for every triangle at an MSAA pixel's centre): the same instance (so the same material
+// and transform), a vertex in common (an indexed mesh shares a vertex only where its normal,
+// UVs, tangent and colour are continuous: glTF's creases and seams duplicate vertices), both
+// facing the eye the same way, and face normals within kContinuousCos of each other (so the
+// surface does not fold at the pixel). Most of a finely tessellated scene's edge pixels are
+// such inner edges; shading each of their triangles cost almost as much again as the first
+// (raster/visibility_pass.h).
+const float kContinuousCos = 0.5;  // 60 degrees
+bool continues(uvec2 a, uvec2 b, uint view) {
+  if (a.x != b.x) return false;
+  const uint a0 = indices[3u * a.y], a1 = indices[3u * a.y + 1u], a2 = indices[3u * a.y + 2u];
+  const uint b0 = indices[3u * b.y], b1 = indices[3u * b.y + 1u], b2 = indices[3u * b.y + 2u];
+  const bool common_vertex = b0 == a0 || b0 == a1 || b0 == a2 || b1 == a0 || b1 == a1 || b1 == a2 ||
+                             b2 == a0 || b2 == a1 || b2 == a2;
+  if (!common_vertex) return false;
+  const Instance inst = instances[a.x];
+  const uint vo = inst.info.y;
+  const mat3 linear = mat3(inst.model);
+  const vec3 pa = vertex3(a0 + vo, 0u), pb = vertex3(b0 + vo, 0u);
+  const vec3 na = cross(linear * (vertex3(a1 + vo, 0u) - pa), linear * (vertex3(a2 + vo, 0u) - pa));
+  const vec3 nb = cross(linear * (vertex3(b1 + vo, 0u) - pb), linear * (vertex3(b2 + vo, 0u) - pb));
+  const vec3 eye = views[view].eye.xyz - (inst.model * vec4(pa, 1.0)).xyz;
+  if ((dot(na, eye) > 0.0) != (dot(nb, eye) > 0.0)) return false;
+  const float d = dot(na, nb);
+  return d > 0.0 && d * d > kContinuousCos * kContinuousCos * dot(na, na) * dot(nb, nb);
+}
+
 void main() {
   const uint view = pc.view_index;
   const ivec3 p = ivec3(ivec2(gl_FragCoord.xy), int(view));
-  // The pixel's distinct triangles and how many samples each covers; the first is shaded for
-  // every pixel, the others where the pixel has them (its triangles' edges). On lavapipe a
+  // The pixel's distinct surfaces and how many samples each covers (a triangle that continues
+  // an earlier one's surface joins it); the first is shaded for every pixel, the others where
+  // the pixel has them (silhouettes, creases, seams, material edges). On lavapipe a
   // block of pixels shades a second time when any of its pixels needs it: with Sponza's
   // pixel-sized triangles that is most blocks at MSAA 4 (raster/visibility_pass.h).
   uvec2 triangle[kSamples];
@@ -200,8 +230,8 @@ void main() {
       continue;
     }
     bool known = false;
-    for (int k = 0; k < distinct; ++k)
-      if (triangle[k] == id) {
+    for (int k = 0; k < distinct && !known; ++k)
+      if (triangle[k] == id || continues(triangle[k], id, pc.view_index)) {
         covered[k] += 1.0;
         known = true;
       }
