@@ -6,4 +6,7 @@
 
 layout(location = 0) out uvec2 out_id;
 
-void main() { out_id = uvec2(pc.instance, pc.first_triangle + uint(gl_PrimitiveID)); }
+// The instance's top bit says the sample sees the triangle's back (visibility_shade.glsl).
+void main() {
+  out_id = uvec2(pc.instance | (gl_FrontFacing ? 0u : 0x80000000u), pc.first_triangle + uint(gl_PrimitiveID));
+}

@@ -10,5 +10,5 @@ layout(location = 0) out uvec2 out_id;
 
 void main() {
   if (masked_out(material_base_color().a)) discard;
-  out_id = uvec2(pc.instance, pc.first_triangle + uint(gl_PrimitiveID));
+  out_id = uvec2(pc.instance | (gl_FrontFacing ? 0u : 0x80000000u), pc.first_triangle + uint(gl_PrimitiveID));
 }

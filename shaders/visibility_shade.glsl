@@ -46,7 +46,8 @@ layout(set = 3, binding = 5) uniform sampler2D slot_textures[kSlotImages];
 
 layout(location = 0) out vec4 out_color;
 
-const uint kNothing = 0xffffffffu;  // the ids' clear value
+const uint kNothing = 0xffffffffu;     // the ids' clear value
+const uint kBackFacing = 0x80000000u;  // in an id's x: the sample sees the triangle's back
 
 vec2 vertex2(uint v, uint o) { return vec2(vertex_floats[18u * v + o], vertex_floats[18u * v + o + 1u]); }
 vec3 vertex3(uint v, uint o) { return vec3(vertex2(v, o), vertex_floats[18u * v + o + 2u]); }
@@ -100,7 +101,7 @@ bool has_slot(Material m, uint bit) { return kTextures && (uint(m.alpha.z) & bit
 
 // The linear radiance of triangle `id` at the pixel centre q (NDC), seen from views[view].
 vec3 shade(uvec2 id, uint view, vec2 q, vec2 pixel) {
-  const Instance inst = instances[id.x];
+  const Instance inst = instances[id.x & ~kBackFacing];
   const uint vo = inst.info.y;
   const uint i0 = indices[3u * id.y] + vo;
   const uint i1 = indices[3u * id.y + 1u] + vo;
@@ -184,31 +185,18 @@ vec3 shade(uvec2 id, uint view, vec2 q, vec2 pixel) {
 
 // Whether triangle b continues triangle a's surface, so that the samples b covers can take a's
 // shading at the pixel centre (which extrapolates a's attributes there, as the forward pass
-// does for every triangle at an MSAA pixel's centre): the same instance (so the same material
-// and transform), a vertex in common (an indexed mesh shares a vertex only where its normal,
-// UVs, tangent and colour are continuous: glTF's creases and seams duplicate vertices), both
-// facing the eye the same way, and face normals within kContinuousCos of each other (so the
-// surface does not fold at the pixel). Most of a finely tessellated scene's edge pixels are
-// such inner edges; shading each of their triangles cost almost as much again as the first
-// (raster/visibility_pass.h).
-const float kContinuousCos = 0.5;  // 60 degrees
-bool continues(uvec2 a, uvec2 b, uint view) {
+// does for every triangle at an MSAA pixel's centre): the same instance seen from the same side
+// (so the same material, transform and facing: the ids' x, kBackFacing included) and a vertex
+// in common (an indexed mesh shares a vertex only where its normal, UVs, tangent and colour are
+// continuous: glTF's creases and seams duplicate vertices). Most of a finely tessellated
+// scene's edge pixels are such inner edges; shading each of their triangles cost almost as
+// much again as the first (raster/visibility_pass.h). The test reads six indices, no vertex.
+bool continues(uvec2 a, uvec2 b) {
   if (a.x != b.x) return false;
   const uint a0 = indices[3u * a.y], a1 = indices[3u * a.y + 1u], a2 = indices[3u * a.y + 2u];
   const uint b0 = indices[3u * b.y], b1 = indices[3u * b.y + 1u], b2 = indices[3u * b.y + 2u];
-  const bool common_vertex = b0 == a0 || b0 == a1 || b0 == a2 || b1 == a0 || b1 == a1 || b1 == a2 ||
-                             b2 == a0 || b2 == a1 || b2 == a2;
-  if (!common_vertex) return false;
-  const Instance inst = instances[a.x];
-  const uint vo = inst.info.y;
-  const mat3 linear = mat3(inst.model);
-  const vec3 pa = vertex3(a0 + vo, 0u), pb = vertex3(b0 + vo, 0u);
-  const vec3 na = cross(linear * (vertex3(a1 + vo, 0u) - pa), linear * (vertex3(a2 + vo, 0u) - pa));
-  const vec3 nb = cross(linear * (vertex3(b1 + vo, 0u) - pb), linear * (vertex3(b2 + vo, 0u) - pb));
-  const vec3 eye = views[view].eye.xyz - (inst.model * vec4(pa, 1.0)).xyz;
-  if ((dot(na, eye) > 0.0) != (dot(nb, eye) > 0.0)) return false;
-  const float d = dot(na, nb);
-  return d > 0.0 && d * d > kContinuousCos * kContinuousCos * dot(na, na) * dot(nb, nb);
+  return b0 == a0 || b0 == a1 || b0 == a2 || b1 == a0 || b1 == a1 || b1 == a2 || b2 == a0 ||
+         b2 == a1 || b2 == a2;
 }
 
 void main() {
@@ -231,7 +219,7 @@ void main() {
     }
     bool known = false;
     for (int k = 0; k < distinct && !known; ++k)
-      if (triangle[k] == id || continues(triangle[k], id, pc.view_index)) {
+      if (triangle[k] == id || continues(triangle[k], id)) {
         covered[k] += 1.0;
         known = true;
       }

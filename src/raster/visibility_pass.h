@@ -32,14 +32,23 @@
 // reads take one texture at a time for the lanes that share it (visibility_shade.glsl's
 // read_slot): the same pixels, 3.01x against 3.20x (Sponza, 1 view, mean of five interleaved
 // runs at load 6-7). textureLod instead of textureGrad changed nothing measurable. A pixel's
-// triangles that continue one surface (same instance, a vertex index in common, same facing,
-// no fold: visibility_shade.glsl's continues()) share one shading: the test is an index
-// compare before any vertex is read. Frame ms of full shading / trivial floor, interleaved
-// pairs (quiet machine): Sponza 3.28x and 3.07x before, 2.76x and 2.80x after; Breakfast room
-// 2.82x and 2.90x before, 2.68x and 2.71x after. Sponza's image moves by 47.8 dB (420x560,
-// ddish compare). Merging every triangle of an instance would be 2.35x: the vertex rule keeps
-// seams and creases apart. (An earlier try at merging, which compared positions and normals,
-// cost about what it saved.)
+// triangles that continue one surface (the same instance seen from the same side, a vertex
+// index in common: visibility_shade.glsl's continues()) share one shading; the geometry pass
+// marks back-facing samples in the id so the test reads six indices and no vertex. Frame ms of
+// full shading / trivial floor, interleaved pairs (bench/raster_views --views 1 --size 420x560
+// --frames 3 --shading both --shading-pass visibility, quiet machine): Sponza 3.03x and 3.02x
+// before, 2.49x and 2.49x after; Breakfast room 2.91x and 2.87x before, 2.41x and 2.48x after.
+// The images against the 512-spp references (160x120, 4 frames): Sponza 22.567 -> 22.550 dB,
+// Breakfast room 23.833 -> 23.830 dB; Sponza's 420x560 image moves by 47.5 dB. A first version
+// that also read the six vertices to reject folds over 60 degrees and opposite facings gained
+// half as much (2.76-2.80x on Sponza) for no better image; merging every triangle of an
+// instance would be about 2.35x, but the vertex rule keeps colour and UV seams apart. Where
+// Sponza's time goes now (1 view, frame ms, one run each): trivial floor 60-65; the visibility
+// pass with a constant shading 78 (the ids' writes and the full-screen pass's fixed cost);
+// with the ids read and merged 82; with the material and its textures but no light 122;
+// without textures but with light 133; full 151. So the light is about 29 ms, the material's
+// reconstruction 22 and its textures 18.
+// (An earlier try at merging, which compared positions and normals, cost about what it saved.)
 //
 // Recording: per-view and layered as ViewMethod says; multiview draws the geometry per view
 // (lavapipe's multiview is not trustworthy, raster/view_method.h, and the shading is per view
