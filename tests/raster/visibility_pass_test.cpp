@@ -98,7 +98,7 @@ int max_display_difference(const FrameOutput& a, const FrameOutput& b) {
 }
 
 // A ridge roof along x: two faces at 90 degrees that share the ridge's vertices (whose normals
-// are the faces' mean), so only the angle between the faces tells that the surface folds.
+// are the faces' mean): one surface to continues(), which looks at indices, not at angles.
 scene::Mesh ridge_roof() {
   scene::Mesh m;
   m.name = "roof";
