@@ -26,7 +26,7 @@ RenderTarget::RenderTarget(const gpu::Device& device, const RenderTargetDesc& de
                         " samples per pixel (MSAA counts it supports for colour and depth: " +
                         counts_text(counts) + ")");
   const auto samples = static_cast<VkSampleCountFlagBits>(desc.samples);
-  if (desc.samples > 1)
+  if (resolves())
     msaa_color_ = gpu::Image(device, {.width = desc.width, .height = desc.height, .layers = desc.layers,
                                       .format = kColorFormat,
                                       .usage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, .samples = samples});
@@ -36,14 +36,14 @@ RenderTarget::RenderTarget(const gpu::Device& device, const RenderTargetDesc& de
                                .format = kDepthFormat,
                                .usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, .samples = samples});
   for (std::uint32_t i = 0; i < desc.layers; ++i) {
-    if (desc.samples > 1) msaa_views_.push_back(msaa_color_.make_view(i, 1));
+    if (resolves()) msaa_views_.push_back(msaa_color_.make_view(i, 1));
     resolved_views_.push_back(resolved_.make_view(i, 1));
     depth_views_.push_back(depth_.make_view(i, 1));
   }
   if (desc.block > 1)
     for (std::uint32_t first = 0; first < desc.layers; first += desc.block) {
       const std::uint32_t count = std::min(desc.block, desc.layers - first);
-      if (desc.samples > 1) msaa_blocks_.push_back(msaa_color_.make_view(first, count));
+      if (resolves()) msaa_blocks_.push_back(msaa_color_.make_view(first, count));
       resolved_blocks_.push_back(resolved_.make_view(first, count));
       depth_blocks_.push_back(depth_.make_view(first, count));
     }
@@ -54,11 +54,11 @@ std::uint32_t RenderTarget::block_layers(std::uint32_t b) const {
 }
 
 VkImageView RenderTarget::color_block_view(std::uint32_t b) const {
-  return multisampled() ? msaa_blocks_.at(b).get() : resolved_blocks_.at(b).get();
+  return resolves() ? msaa_blocks_.at(b).get() : resolved_blocks_.at(b).get();
 }
 
 VkImageView RenderTarget::color_view(std::uint32_t layer) const {
-  return multisampled() ? msaa_views_.at(layer).get() : resolved_views_.at(layer).get();
+  return resolves() ? msaa_views_.at(layer).get() : resolved_views_.at(layer).get();
 }
 
 void RenderTarget::begin_frame(VkCommandBuffer cmd) const {
@@ -67,7 +67,7 @@ void RenderTarget::begin_frame(VkCommandBuffer cmd) const {
       VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
   const VkAccessFlags color_access =
       VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  if (multisampled())
+  if (resolves())
     gpu::image_barrier(cmd, msaa_color_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                        color_stages, 0, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT, color_access);
   gpu::image_barrier(cmd, resolved_, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
@@ -80,7 +80,7 @@ void RenderTarget::begin_frame(VkCommandBuffer cmd) const {
 }
 
 void RenderTarget::end_frame(VkCommandBuffer cmd) const {
-  if (!multisampled()) {
+  if (!resolves()) {
     gpu::image_barrier(cmd, resolved_, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
                        VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
                        VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,

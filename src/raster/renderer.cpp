@@ -120,8 +120,11 @@ Renderer::Renderer(gpu::Device& device, const scene::Scene& scene, const probes:
   forward_->prepare(options.view_method);
   if (use_visibility(device, options, materials_)) {
     const ForwardPassDesc& f = forward_->desc();
+    // Nothing blends over the shading without BLEND materials: it writes the resolved pixels.
+    shade_resolved_ = samples_ > 1 && !plan_.alpha_blend;
     visibility_ = std::make_unique<VisibilityPass>(
-        device, VisibilityPassDesc{f.set_layouts, f.sh_order, f.samples, f.variant}, meshes_, materials_);
+        device, VisibilityPassDesc{f.set_layouts, f.sh_order, f.samples, shade_resolved_, f.variant}, meshes_,
+        materials_);
     visibility_->prepare(options.view_method);
   }
   if (device.info().timestamps_supported()) timer_.emplace(device, kRanges);
@@ -152,7 +155,8 @@ void Renderer::ensure_target(std::uint32_t width, std::uint32_t height, std::uin
       device_, RenderTargetDesc{.width = width, .height = height, .layers = views, .samples = samples_,
                                 .block = options_.view_method == ViewMethod::multiview
                                              ? forward_->views_per_pass()
-                                             : 0u});
+                                             : 0u,
+                                .multisampled_color = !shade_resolved_});
   const VkDeviceSize pixels = VkDeviceSize{width} * height * views;
   // Transfer sources too: a RenderRequest's after_batch may copy views out of them.
   const VkBufferUsageFlags usage =
@@ -220,9 +224,10 @@ bool Renderer::shadows_current(const scene::Scene& scene,
 }
 
 std::uint64_t Renderer::view_bytes(std::uint32_t width, std::uint32_t height) const {
-  // MSAA colour (RGBA16F) and depth (D32) samples, the visibility pass's ids (two uints a
-  // sample), the resolve image, the HDR and display readbacks.
-  const std::uint64_t sample_bytes = 8 + 4 + (visibility_ ? 8 : 0);
+  // MSAA colour (RGBA16F, unless the visibility pass shades the resolve image) and depth (D32)
+  // samples, the visibility pass's ids (two uints a sample), the resolve image, the HDR and
+  // display readbacks.
+  const std::uint64_t sample_bytes = (shade_resolved_ ? 0 : 8) + 4 + (visibility_ ? 8 : 0);
   return std::uint64_t{width} * height * (std::uint64_t{samples_} * sample_bytes + 8 + 8 + 4) + pass_bytes_;
 }
 

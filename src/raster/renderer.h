@@ -201,6 +201,7 @@ class Renderer {
   BrdfTables brdf_tables_;
   std::unique_ptr<ForwardPass> forward_;
   std::unique_ptr<VisibilityPass> visibility_;  // the shading pass when it is the visibility pass
+  bool shade_resolved_ = false;  // VisibilityPassDesc::shade_resolved: the target keeps no MSAA colour
   Tonemapper tonemapper_;
   std::optional<EnvironmentBackground> background_;  // the scene's environment map, if any
   std::optional<gpu::TimestampQueries> timer_;

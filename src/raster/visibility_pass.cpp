@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 
 #include "gpu/commands.h"
@@ -138,7 +139,7 @@ VisibilityPass::VisibilityPass(const gpu::Device& device, const VisibilityPassDe
       {kMaterialStrideConstant, static_cast<std::uint32_t>(materials.uniform_stride() / sizeof(glm::vec4))},
       {kSamplesConstant, desc.samples}};
   p.color_format = RenderTarget::kColorFormat;
-  p.samples = static_cast<VkSampleCountFlagBits>(desc.samples);
+  p.samples = static_cast<VkSampleCountFlagBits>(desc.shade_resolved ? 1u : desc.samples);
   p.fullscreen = true;
   p.depth_write = false;
   shade_pipeline_ = make_graphics_pipeline(device, p);
@@ -293,6 +294,8 @@ void VisibilityPass::draw_geometry(VkCommandBuffer cmd, const scene::Scene& scen
 void VisibilityPass::record(VkCommandBuffer cmd, const scene::Scene& scene, const GpuMeshes& meshes,
                             const MaterialTextures& materials, std::array<VkDescriptorSet, 3> sets,
                             const RenderTarget& target, const ForwardViews& views, const glm::vec4& clear) {
+  if (target.desc().samples != desc_.samples || (target.multisampled() && target.resolves() == desc_.shade_resolved))
+    throw std::logic_error("VisibilityPass::record: the target's samples or colour are not the pass's");
   passes_ = 0;
   stats_ = {};
   ensure_ids(target);
