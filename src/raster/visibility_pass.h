@@ -9,8 +9,10 @@
 // the forward shader does, and writes the mean over its samples, so the resolve is
 // unchanged; where no BLEND material follows, it writes that mean straight into the resolve
 // image (VisibilityPassDesc::shade_resolved): no multisampled colour is stored or resolved,
-// 8 bytes a sample less and, on lavapipe, about 3 ms a 420x560 view at MSAA 4 (the resolve). glTF BLEND instances then go through the forward pass's transparent pass
-// (ForwardPass::record_transparent) over this depth.
+// 8 bytes a sample less and, on lavapipe, about 2.5 ms a 420x560 view at MSAA 4 (the
+// resolve; frame minus forward GPU time 4.5-5.3 -> 2.4-2.7 ms on Sponza, bench/raster_views
+// --frames 21 --probe-visibility 8). glTF BLEND instances then go through the forward pass's
+// transparent pass (ForwardPass::record_transparent) over this depth.
 //
 // Why: lavapipe shades fragments in 4x4 blocks with a coverage mask, so the forward pass's
 // small triangles leave most lanes idle, and every layer of overdraw that survives the early
@@ -20,14 +22,16 @@
 // 420x560, MSAA 4, per-view, culling, one run at load 8-9): Sponza 3.03x against the forward
 // pass's 3.78x (1 view), 2.43x against 3.19x (4 views); Breakfast room 2.74x against 3.14x,
 // 2.67x against 3.14x. Shading only each pixel's first triangle measured 1.9x; the rest was
-// (before the per-surface shading below) the further triangles of edge pixels (a third of Sponza's pixels at 420x560, MSAA 4).
+// (before the per-surface shading below) the further triangles of edge pixels (a third of
+// Sponza's pixels at 420x560, MSAA 4).
 // Listing the edge pixels in a compute pass and shading their further triangles there with
 // full lanes (branch s19-compact-experiment) gave the same images and the same ratios within
 // the noise (4 views, load 9-12: Sponza 2.28x and 2.34x against 2.22x and 2.45x, Breakfast
 // room 2.61x and 2.44x against 2.69x and 2.72x): there an edge pixel cost about three times a
 // pixel's first shading in this pass (lavapipe's compute path, or neighbouring work items
 // from unrelated triangles and materials), so the lanes it saved were spent. A fragment pass over
-// a compact image (16 edge pixels to a full 4x4 block) instead did no better either. Of the terms, before the per-surface shading, the material textures cost most: without
+// a compact image (16 edge pixels to a full 4x4 block) instead did no better either. Of the
+// terms, before the per-surface shading, the material textures cost most: without
 // them 2.2x against 3.2x, without direct lights 2.9x, without probe light 3.0x, without
 // shadows or specular probes 3.2x (one view, load 9-10). The forward pass, whose textures
 // are bound per draw, pays less for them (2.9-3.1x without against 3.7x), so the material
