@@ -44,7 +44,9 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
         f"{defaults['probe_samples']} paths per probe per update, the scene's sidecar grid, hysteresis "
         f"{defaults['hysteresis']}, {defaults['bounces']} bounces per probe path (ddish's default: one fewer than the "
         "reference's 16, since the rasterized surface is the first scattering; *bounces_4* shows what shorter "
-        "paths cost in accuracy). *grid half* halves the sidecar's probe counts on every axis (twice the spacing). "
+        "paths cost in accuracy). *grid half* halves the sidecar's probe counts on every axis (twice the spacing); *_fit* "
+        "adds `--probe-placement fit` (the grid moved by a quarter cell where the surfaces the scene's cameras see "
+        "then see more of their probes). "
         "Baselines in the same run: path tracing (`ddish reference --spp k`, seed 7 so its noise is "
         "independent of the reference's; its time is the reference renderer's own render seconds) at "
         "k spp and at equal time (`--time-limit` = the paper-settings frame time), and direct light only "
@@ -85,8 +87,10 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
             args = ["--width", W, "--height", H, "--frames", frames, "--probe-samples",
                     s["probe_samples"], "--sh-order", s["sh_order"], "--hysteresis", s["hysteresis"],
                     "--bounces", s["bounces"]]
-            if s["grid"] == "half":
+            if s["grid"].startswith("half"):
                 args += ["--grid", half]
+            if s["grid"].endswith("_fit"):
+                args += ["--probe-placement", "fit"]
             try:
                 out = runner.work / f"err_{key}_{c['name']}"
                 t = render(runner, path, out, args, f"error {key} {c['name']}")
@@ -94,7 +98,8 @@ def section_error(runner, cfg, scenes, cache, results_dir, report):
                 pairs[c["name"]] = (only_exr(out), ref_exr)
                 rows.append({"scene": key, "method": "probes", "config": c["name"], "param": c["param"],
                              "value": c["value"], "samples": s["probe_samples"],
-                             "grid": ",".join(map(str, counts)) if s["grid"] == "sidecar" else half,
+                             "grid": (",".join(map(str, counts)) if s["grid"].startswith("sidecar") else half)
+                                     + (" fit" if s["grid"].endswith("_fit") else ""),
                              "sh_order": s["sh_order"], "hysteresis": s["hysteresis"],
                              "bounces": s["bounces"],
                              "ms_per_frame": st["frame_ms"], "probe_ms": st["probe_update_ms"],

@@ -56,7 +56,8 @@ FULL = {
     "error_all_cameras": True,
     "sweep": {
         "probe_samples": [16, 64, 256],
-        "grid": ["sidecar", "half"],
+        # *_fit: --probe-placement fit on that grid (issue 19; docs/probe-visibility.md).
+        "grid": ["sidecar", "half", "sidecar_fit", "half_fit"],
         "sh_order": [1, 2, 3, 4],
         "hysteresis": [0.9, 0.95, 0.99],
         "bounces": [4],
@@ -98,7 +99,7 @@ QUICK = {
     "error_frames": 4,
     "sweep": {
         "probe_samples": [16, 64],
-        "grid": ["sidecar", "half"],
+        "grid": ["sidecar", "half", "half_fit"],
         "sh_order": [1, 2],
         "hysteresis": [0.95],
     },

@@ -564,6 +564,9 @@ Action make_view(CLI::App& root) {
   cmd->add_option("--grid", a->probe.grid,
                   "probe counts X,Y,Z, or auto, as the server's (default: sidecar counts, else automatic)");
   cmd->add_option("--probe-spacing", a->probe.spacing, "as the server's --probe-spacing");
+  cmd->add_option("--probe-placement", a->probe.placement, "as the server's --probe-placement")
+      ->check(CLI::IsMember({"centres", "fit"}))
+      ->capture_default_str();
   cmd->add_option("--sh-order", a->probe.sh_order, "as the server's --sh-order")->capture_default_str();
   // The sky or environment map the view draws behind the scene: give the server's (serve --sky,
   // --environment), so that the background matches the light in the probes.

@@ -1,12 +1,16 @@
 #include "app/probe_options.h"
 
+#include <chrono>
+#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "probes/grid_placement.h"
 #include "scene/scene.h"
+#include "trace/tracer.h"
 
 namespace ddish::app {
 
@@ -14,6 +18,12 @@ void add_probe_options(CLI::App& cmd, ProbeArgs& a) {
   cmd.add_option("--grid", a.grid,
                  "probe counts X,Y,Z, or auto (default: sidecar counts, else automatic)");
   cmd.add_option("--probe-spacing", a.spacing, "fit the grid to the bounds at this spacing (m)");
+  cmd.add_option("--probe-placement", a.placement,
+                 "centres: probes at the cell centres of the grid over the bounds; fit: the grid "
+                 "moved by a quarter cell on an axis where the surfaces the scene's cameras see "
+                 "then see more of their probes (a server's clients must ask for the same)")
+      ->check(CLI::IsMember({"centres", "fit"}))
+      ->capture_default_str();
   cmd.add_option("--probe-samples", a.samples, "paths per probe per update")->capture_default_str();
   cmd.add_option("--bounces", a.bounces,
                  "scattering events per probe path, the probe ray's first hit counting as one: 0 "
@@ -72,7 +82,9 @@ void check_probe_options(const ProbeArgs& a) {
     throw std::invalid_argument(fmt::format("--sh-order must be 1, 2, 3 or 4, got {}", a.sh_order));
 }
 
-Placement place_probes(const ProbeArgs& a, const scene::Scene& s) {
+namespace {
+
+Placement place_over_bounds(const ProbeArgs& a, const scene::Scene& s) {
   const bool sidecar_bounds = s.sidecar.probe_bounds.has_value();
   const scene::Aabb bounds = sidecar_bounds ? *s.sidecar.probe_bounds : s.bounds();
   if (bounds.empty() && s.triangle_count() == 0)  // points and lines only, or no meshes at all
@@ -100,6 +112,37 @@ Placement place_probes(const ProbeArgs& a, const scene::Scene& s) {
                       "{}-cell margin",
                       probes::ProbeGrid::kAutoLongestAxisProbes,
                       probes::ProbeGrid::kAutoMarginCells)};
+}
+
+// Bounces of the paths that look for light at the surface points: a gallery behind an arcade
+// is reached by light after two or three.
+constexpr int kPlacementBounces = 4;
+
+// The grid moved to where its probes see the most of the surfaces (probes/grid_placement.h),
+// traced with a tracer of its own: the probe tracer is built later, and may be the GPU's.
+Placement fitted(Placement p, const scene::Scene& s) {
+  const auto start = std::chrono::steady_clock::now();
+  trace::PathOptions paths;
+  paths.max_bounces = kPlacementBounces;
+  const trace::Tracer tracer(s, paths);
+  const probes::GridFit fit = probes::fit_grid_placement(p.grid, s, tracer);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const glm::vec3 o = fit.offset_cells;
+  std::fprintf(stderr,
+               "probe placement: fit over %u surface points, %u grids in %.1f s: moved (%g, %g, %g) "
+               "cells, surfaces see %.1f %% of their probes' weight (%.1f %% at the cell centres)\n",
+               fit.points, fit.grids_scored, seconds, o.x, o.y, o.z, 100.0 * fit.score,
+               100.0 * fit.unmoved_score);
+  p.grid = fit.grid;
+  p.how += fmt::format(", moved ({:g}, {:g}, {:g}) cells by --probe-placement fit", o.x, o.y, o.z);
+  return p;
+}
+
+}  // namespace
+
+Placement place_probes(const ProbeArgs& a, const scene::Scene& s) {
+  Placement p = place_over_bounds(a, s);
+  return a.placement == "fit" ? fitted(std::move(p), s) : p;
 }
 
 probes::UpdateOptions update_options(const ProbeArgs& a) {

@@ -46,10 +46,11 @@ struct ProbeArgs {
   std::uint64_t seed = 1;
   int visibility = kDefaultProbeVisibility;  // moment map resolution; 0: no visibility
   bool relocate = false;                     // --probe-relocation
+  std::string placement = "centres";         // --probe-placement: centres | fit
 };
 
-// Registers --grid, --probe-spacing, --probe-samples, --bounces, --hysteresis, --sh-order and
-// --seed on cmd, writing into args (which must outlive the parse).
+// Registers --grid, --probe-spacing, --probe-placement, --probe-samples, --bounces, --hysteresis,
+// --sh-order and --seed on cmd, writing into args (which must outlive the parse).
 void add_probe_options(CLI::App& cmd, ProbeArgs& args);
 // Registers --probe-visibility and --probe-relocation, for the commands that trace a volume in
 // process and rasterize or write it.
@@ -73,6 +74,9 @@ struct Placement {
 // --grid counts or --probe-spacing over the sidecar's probe_bounds (else the scene's bounds);
 // without either, the sidecar's probe counts; without those (or with --grid auto), automatic:
 // over the sidecar's bounds as they are, over the scene's with a margin (fit_auto_around).
+// With --probe-placement fit the grid is then moved by a fraction of a cell to where its probes
+// see the most of the surfaces they light (probes/grid_placement.h); this traces the scene
+// (about a second for Sponza) and reports on stderr.
 Placement place_probes(const ProbeArgs& args, const scene::Scene& scene);
 
 probes::UpdateOptions update_options(const ProbeArgs& args);
