@@ -25,14 +25,6 @@ struct WorldTriangle {
   bool double_sided;
 };
 
-// The smallest non-zero cell size of the grid (0 for a single point).
-float min_cell(const ProbeGrid& grid) {
-  float cell = 0.0f;
-  for (int a = 0; a < 3; ++a)
-    if (grid.spacing()[a] > 0.0f) cell = cell > 0.0f ? std::min(cell, grid.spacing()[a]) : grid.spacing()[a];
-  return cell;
-}
-
 // Points scored per parallel task; the per-task sums are added in task order.
 constexpr std::size_t kChunk = 512;
 
@@ -87,7 +79,7 @@ std::vector<SurfaceSample> sample_surfaces(const scene::Scene& s, std::uint32_t 
 double visible_weight(const ProbeGrid& grid, std::span<const SurfaceSample> points,
                       const SegmentVisible& visible) {
   if (points.empty()) return 0.0;
-  const float lift = kPlacementLiftCells * min_cell(grid);
+  const float lift = kPlacementLiftCells * grid.smallest_spacing();
   const glm::ivec3 last = grid.counts() - 1;
   const std::size_t chunks = (points.size() + kChunk - 1) / kChunk;
   std::vector<double> sums(chunks, 0.0);
@@ -217,7 +209,7 @@ GridFit fit_grid_placement(const ProbeGrid& grid, const scene::Scene& s, const t
   std::vector<SurfaceSample> points = camera_surfaces(s, embree, kPlacementSurfacePoints, kPlacementSeed);
   if (points.empty())
     points = lit_surfaces(sample_surfaces(s, kPlacementSurfacePoints, kPlacementSeed), tracer,
-                          kPlacementLiftCells * min_cell(grid), kPlacementLightPaths);
+                          kPlacementLiftCells * grid.smallest_spacing(), kPlacementLightPaths);
   const SegmentVisible visible = [&embree](const glm::vec3& from, const glm::vec3& to) {
     const glm::vec3 d = to - from;
     const float length = glm::length(d);

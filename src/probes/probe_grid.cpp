@@ -91,4 +91,11 @@ glm::vec3 ProbeGrid::grid_coordinate(const glm::vec3& world) const {
   return g;
 }
 
+float ProbeGrid::smallest_spacing() const {
+  float cell = 0.0f;
+  for (int a = 0; a < 3; ++a)
+    if (spacing_[a] > 0.0f) cell = cell > 0.0f ? std::min(cell, spacing_[a]) : spacing_[a];
+  return cell;
+}
+
 }  // namespace ddish::probes

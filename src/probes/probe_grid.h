@@ -52,6 +52,8 @@ class ProbeGrid {
   const glm::ivec3& counts() const { return counts_; }
   // Distance between neighbouring probes per axis (the cell size); 0 on an axis of zero extent.
   const glm::vec3& spacing() const { return spacing_; }
+  // The smallest non-zero cell size over the axes (0 when every axis is flat: a single point).
+  float smallest_spacing() const;
   std::uint32_t probe_count() const {
     return std::uint32_t(counts_.x) * std::uint32_t(counts_.y) * std::uint32_t(counts_.z);
   }

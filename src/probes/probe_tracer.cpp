@@ -99,9 +99,7 @@ std::uint32_t ProbeTracer::trace_probe(const ProbeVolume& volume, std::uint32_t 
 glm::vec3 relocated_offset(const ProbeVolume& volume, std::uint32_t i, const NearestHits& hits,
                            bool inside_geometry) {
   const glm::vec3 spacing = volume.grid().spacing();
-  float cell = 0.0f;
-  for (int a = 0; a < 3; ++a)
-    if (spacing[a] > 0.0f) cell = cell > 0.0f ? std::min(cell, spacing[a]) : spacing[a];
+  const float cell = volume.grid().smallest_spacing();
   const glm::vec3 old = volume.offset(i);
   if (!(cell > 0.0f)) return old;
   const float keep = kMinSurfaceCells * cell;

@@ -84,11 +84,8 @@ ProbeTextures::ProbeTextures(const gpu::Device& device, const probes::ProbeVolum
   moment_res_ = volume.moment_resolution();
   if (moment_res_ > 0) {
     record_uints_ = std::uint32_t(volume.moment_texels()) + 3;  // the map, then the offset
-    float min_cell = 0.0f;
-    for (int a = 0; a < 3; ++a)
-      if (spacing[a] > 0.0f) min_cell = min_cell > 0.0f ? std::min(min_cell, spacing[a]) : spacing[a];
-    uniform_.visibility = glm::vec4(float(moment_res_), float(record_uints_),
-                                    volume.moment_range(), kVisibilityBiasCells * min_cell);
+    uniform_.visibility = glm::vec4(float(moment_res_), float(record_uints_), volume.moment_range(),
+                                    kVisibilityBiasCells * volume.grid().smallest_spacing());
   }
 
   for (std::uint32_t t = 0; t < n_textures; ++t) {

@@ -60,6 +60,10 @@ TEST(ProbeGrid, FlatBoundsAndSingleProbe) {
   EXPECT_EQ(grid.spacing().y, 0.0f);
   EXPECT_EQ(grid.position(glm::ivec3(1, 0, 1)), glm::vec3(3.0f, 2.0f, 3.0f));
   EXPECT_EQ(grid.grid_coordinate({3.0f, 7.0f, 1.0f}), glm::vec3(1.0f, 0.0f, 0.0f));
+  // The smallest spacing skips the flat axis: cells of 2 m along x and z.
+  EXPECT_EQ(grid.smallest_spacing(), 2.0f);
+  EXPECT_EQ(ProbeGrid(Aabb{{0.0f, 0.0f, 0.0f}, {4.0f, 1.0f, 3.0f}}, {2, 4, 1}).smallest_spacing(), 0.25f);
+  EXPECT_EQ(ProbeGrid().smallest_spacing(), 0.0f);  // one probe at a point: nothing to measure
 }
 
 TEST(ProbeGrid, RejectsBadInput) {
