@@ -32,7 +32,9 @@
 //                  [every option of render but the probe update's and the schedule's]
 // is the same loop with the probe stream's client as its probe source (remote_probes.h): the
 // probes come from a `ddish serve` of the same scene and probe grid (checked by the scene
-// identity, scene_identity.h), the views go upstream to its scheduler. Without a server at start
+// identity, scene_identity.h; the grid's bounds are taken from the server's stream description,
+// so a grid that serve --probe-placement fit moved is the client's too), the views go upstream
+// to its scheduler. Without a server at start
 // it renders with --probes FILE (a volume of `ddish probes --out`), else with direct light only,
 // and says which; a lost server leaves the last probes in place. Several --connect servers
 // split the probe bricks between them (serve --bricks I/N); the client subscribes only to the
@@ -201,7 +203,7 @@ StreamArgs stream_args(const RenderArgs& a) {
 // Everything that holds Vulkan objects lives in here, so that by the time it returns the device
 // and instance are destroyed and what the layer says about them (leaks) is in the log.
 GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& placement,
-                     const DisplayChoice& choice, const display::ViewSet& first,
+                     const StreamArgs& stream, const DisplayChoice& choice, const display::ViewSet& first,
                      const FrameWriter& writer, std::uint64_t identity,
                      const std::optional<display::Calibration>& calibration, TimingsFile* timings) {
   const bool remote = !a.connect.empty();
@@ -211,8 +213,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     std::fprintf(stderr, "%s: probe tracer %s\n", a.tag(), tracer->why.c_str());
   }
   const bool gpu_tracer = tracer && tracer->kind == TracerKind::vulkan;
-  StreamArgs stream = stream_args(a);  // its wait_ms: what the stream description's wait left
-  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream, placement, a.tag())
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream, placement)
                                       : local_volume(a.probe, placement.grid);
   const std::uint32_t empty_probes = remote ? 0 : leave_out_empty_probes(volume, s);
 
@@ -404,7 +405,6 @@ int run_render(const RenderArgs& a) {
   s.pose(a.time);
   const std::string framing = frame_camera_less(s, a.view, view_aspect(choice, a.view));
   const std::string environment = apply_lighting(s, a.lighting);
-  const Placement placement = place_probes(a.probe, s);
   const display::ViewSet first = make_frame_views(s, choice, a.display, a.view);
   const FrameWriter writer(first, {.dir = a.out,
                                    .stem = fs::path(a.scene).stem().string(),
@@ -417,9 +417,13 @@ int run_render(const RenderArgs& a) {
   if (!framing.empty()) std::fprintf(stderr, "%s: %s\n", a.tag(), framing.c_str());
   std::fprintf(stderr, "%s: %s\n", a.tag(), environment.c_str());
   allow_graceful_stop();
+  // A client asks its servers first: their grid is its grid. Its wait_ms is then what is left.
+  StreamArgs stream = stream_args(a);
+  if (!a.connect.empty()) describe_stream(stream, a.tag());
+  const Placement placement = a.connect.empty() ? place_probes(a.probe, s) : client_placement(a.probe, s, stream, a.tag());
   std::optional<TimingsFile> timings;
   if (!a.timings.empty()) timings.emplace(a.timings, first);
-  const GpuRun run = render_frames(a, s, placement, choice, first, writer,
+  const GpuRun run = render_frames(a, s, placement, stream, choice, first, writer,
                                    scene_identity(geometry, placement.grid, a.probe.sh_order),
                                    calibration, timings ? &*timings : nullptr);
   const std::size_t done = run.result.frames;
@@ -548,7 +552,7 @@ Action make_view(CLI::App& root) {
                   "baked probes (ddish probes --out) to render with until the server answers")
       ->check(CLI::ExistingFile);
   cmd->add_option("--wait-ms", a->wait_ms,
-                  "how long the client waits in all for the servers' stream description (its moment maps) and "
+                  "how long the client waits in all for the servers' stream description (its grid bounds and moment maps) and "
                   "then, with what is left, the first frame for their snapshot")
       ->capture_default_str();
   cmd->add_option("--frame-wait-ms", a->frame_wait_ms,
@@ -560,11 +564,14 @@ Action make_view(CLI::App& root) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--curve-secret", a->curve_secret, "this client's secret key (.key of ddish keys)")
       ->check(CLI::ExistingFile);
-  // The probe placement must be the server's (the scene identity covers it).
+  // The probe counts must be the server's (the scene identity covers the grid); the bounds come
+  // from the server's stream description where it gives them.
   cmd->add_option("--grid", a->probe.grid,
                   "probe counts X,Y,Z, or auto, as the server's (default: sidecar counts, else automatic)");
   cmd->add_option("--probe-spacing", a->probe.spacing, "as the server's --probe-spacing");
-  cmd->add_option("--probe-placement", a->probe.placement, "as the server's --probe-placement")
+  cmd->add_option("--probe-placement", a->probe.placement,
+                  "as the server's --probe-placement, for a server that does not describe its grid's bounds at "
+                  "start (a server that does moves this client's grid to its own)")
       ->check(CLI::IsMember({"centres", "fit"}))
       ->capture_default_str();
   cmd->add_option("--sh-order", a->probe.sh_order, "as the server's --sh-order")->capture_default_str();

@@ -233,7 +233,8 @@ int run_serve(const ServeArgs& a) {
                            .log = [](const std::string& line) { std::fprintf(stderr, "serve: %s\n", line.c_str()); },
                            .curve = curve,
                            .send_hwm = int(std::max<std::size_t>(64, 8 * owned.size())),
-                           .info = net::PublishedProbes(volume, identity, stream, so).description()});
+                           .info = net::PublishedProbes(volume, identity, stream, so).description(),
+                           .info_bounds = net::encode_grid_bounds(placement.grid.bounds())});
   if (curve)
     std::fprintf(stderr, "serve: CurveZMQ, %zu client keys allowed (%s)\n", curve->allowed_z85.size(),
                  a.allow_keys.c_str());

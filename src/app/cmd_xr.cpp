@@ -101,7 +101,8 @@ display::ViewSet eye_set(int width, int height) {
   return set;
 }
 
-XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, std::uint64_t identity,
+XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, const StreamArgs& stream,
+                  std::uint64_t identity,
                   std::optional<TimingsFile>& timings) {
   XrRun run;
   const bool remote = !a.stream.connect.empty();
@@ -122,8 +123,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
                xri.system_name().c_str(), eyes[0].width, eyes[0].height,
                xri.validation_enabled() ? ", OpenXR core validation on" : "");
 
-  StreamArgs stream = a.stream;  // its wait_ms: what the stream description's wait left
-  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream, placement, "xr")
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream, placement)
                                       : local_volume(a.probe, placement.grid);
   if (!remote) {
     const std::uint32_t n = leave_out_empty_probes(volume, s);
@@ -224,12 +224,16 @@ int run_xr(const XrArgs& a) {
   s.pose(0.0);
   const std::string framing = frame_camera_less(s, a.view, 0.9f);
   const std::string environment = apply_lighting(s, a.lighting);
-  const Placement placement = place_probes(a.probe, s);
   if (!framing.empty()) std::fprintf(stderr, "xr: %s\n", framing.c_str());
   std::fprintf(stderr, "xr: %s\n", environment.c_str());
   allow_graceful_stop();
+  // A client asks its servers first: their grid is its grid. Its wait_ms is then what is left.
+  StreamArgs stream = a.stream;
+  if (!stream.connect.empty()) describe_stream(stream, "xr");
+  const Placement placement = stream.connect.empty() ? place_probes(a.probe, s) : client_placement(a.probe, s, stream, "xr");
   std::optional<TimingsFile> timings;
-  const XrRun run = run_session(a, s, placement, scene_identity(geometry, placement.grid, a.probe.sh_order), timings);
+  const XrRun run =
+      run_session(a, s, placement, stream, scene_identity(geometry, placement.grid, a.probe.sh_order), timings);
 
   std::string states;
   for (const std::string& st : run.states) states += (states.empty() ? "" : " ") + st;
@@ -274,7 +278,7 @@ Action make_xr(CLI::App& root) {
                   "probes from a ddish serve at tcp://HOST:PORT (as ddish view) instead of in-process");
   cmd->add_option("--probes", a->stream.baked, "with --connect: baked probes (ddish probes --out) until the server answers")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--wait-ms", a->stream.wait_ms, "with --connect: the wait in all for the servers' stream description (its moment maps) and then, with what is left, the first frame's for their snapshot")
+  cmd->add_option("--wait-ms", a->stream.wait_ms, "with --connect: the wait in all for the servers' stream description (its grid bounds and moment maps) and then, with what is left, the first frame's for their snapshot")
       ->capture_default_str();
   cmd->add_option("--frame-wait-ms", a->stream.frame_wait_ms, "with --connect: each later frame's wait for the server")
       ->capture_default_str();

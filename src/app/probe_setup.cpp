@@ -59,8 +59,47 @@ net::ClientOptions client_options(const StreamArgs& stream, const char* tag) {
 
 }  // namespace
 
-probes::ProbeVolume starting_volume(const ProbeArgs& probe, StreamArgs& stream,
-                                    const Placement& placement, const char* tag) {
+void describe_stream(StreamArgs& stream, const char* tag) {
+  std::string problem;
+  const auto asked = std::chrono::steady_clock::now();
+  stream.described = net::ask_stream_description(client_options(stream, tag), stream.wait_ms, &problem);
+  const auto waited = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - asked);
+  stream.wait_ms = std::max(0, stream.wait_ms - int(waited.count()));
+  if (stream.described) {
+    const int resolution = stream.described->header.moment_resolution;
+    std::fprintf(stderr, "%s: the server streams %s\n", tag,
+                 resolution > 0 ? fmt::format("{0}x{0} distance-moment maps per probe (visibility on)", resolution).c_str()
+                                : "no distance moments (visibility off)");
+  } else {
+    std::fprintf(stderr, "%s: no stream description from %s (%s): this client's own probe placement and moment maps until a server answers\n", tag,
+                 stream.connect.c_str(), problem.c_str());
+  }
+}
+
+Placement client_placement(const ProbeArgs& probe, const scene::Scene& s, const StreamArgs& stream,
+                           const char* tag) {
+  ProbeArgs centred = probe;
+  centred.placement = "centres";
+  Placement own = place_probes(centred, s);
+  if (stream.described && stream.described->bounds) {
+    const net::FrameHeader& h = stream.described->header;
+    const glm::ivec3 counts(int(h.counts[0]), int(h.counts[1]), int(h.counts[2]));
+    if (counts == own.grid.counts()) {
+      Placement theirs{probes::ProbeGrid(*stream.described->bounds, counts), own.how + ", bounds from the server"};
+      const glm::vec3 spacing = own.grid.spacing();
+      const glm::vec3 moved = theirs.grid.bounds().min - own.grid.bounds().min;
+      glm::vec3 cells(0.0f);
+      for (int c = 0; c < 3; ++c) cells[c] = spacing[c] > 0.0f ? moved[c] / spacing[c] : 0.0f;
+      std::fprintf(stderr, "%s: probe grid %dx%dx%d over the server's bounds (moved (%.3g, %.3g, %.3g) cells from this scene's centred grid)\n",
+                   tag, counts.x, counts.y, counts.z, double(cells.x), double(cells.y), double(cells.z));
+      return theirs;
+    }
+  }
+  return probe.placement == "fit" ? place_probes(probe, s) : own;
+}
+
+probes::ProbeVolume starting_volume(const ProbeArgs& probe, const StreamArgs& stream,
+                                    const Placement& placement) {
   std::optional<probes::ProbeVolume> baked;
   if (!stream.baked.empty()) {
     baked = probes::read_volume_file(stream.baked).to_volume();
@@ -71,22 +110,9 @@ probes::ProbeVolume starting_volume(const ProbeArgs& probe, StreamArgs& stream,
           baked->sh_order(), placement.grid.counts().x, placement.grid.counts().y,
           placement.grid.counts().z, probe.sh_order));
   }
-  int resolution = baked ? baked->moment_resolution() : probe.visibility;
-  std::string problem;
-  const auto asked = std::chrono::steady_clock::now();
-  const std::optional<net::FrameHeader> h = net::ask_stream_header(client_options(stream, tag), stream.wait_ms, &problem);
-  const auto waited = std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now() - asked);
-  stream.wait_ms = std::max(0, stream.wait_ms - int(waited.count()));
-  if (h) {
-    resolution = h->moment_resolution;
-    std::fprintf(stderr, "%s: the server streams %s\n", tag,
-                 resolution > 0 ? fmt::format("{0}x{0} distance-moment maps per probe (visibility on)", resolution).c_str()
-                                : "no distance moments (visibility off)");
-  } else {
-    std::fprintf(stderr, "%s: no stream description from %s (%s): assuming %s until a server answers\n", tag,
-                 stream.connect.c_str(), problem.c_str(),
-                 resolution > 0 ? fmt::format("{0}x{0} distance-moment maps", resolution).c_str() : "no distance moments");
-  }
+  const int resolution = stream.described ? stream.described->header.moment_resolution
+                         : baked         ? baked->moment_resolution()
+                                         : probe.visibility;
   if (!baked) return probes::ProbeVolume(placement.grid, probe.sh_order, resolution);
   if (baked->moment_resolution() == resolution) return std::move(*baked);
   // The baked probes' light, without their moment maps (of another resolution than the

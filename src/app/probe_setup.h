@@ -12,6 +12,7 @@
 #include "app/probe_source.h"
 #include "app/schedule_options.h"
 #include "app/tracer_choice.h"
+#include "net/probe_client.h"
 #include "probes/probe_tracer.h"
 #include "probes/probe_volume.h"
 #include "probes/scheduler.h"
@@ -30,6 +31,8 @@ struct StreamArgs {
   std::string curve_server_key;  // the server's .pub
   std::string curve_secret;      // this client's .key
   std::string relay;             // the frames through a ddish relay; empty: from each server
+  // What the servers said of their stream at start (describe_stream); none: no answer.
+  std::optional<net::StreamDescription> described;
 };
 
 // The in-process probe half: the probe tracer (--tracer's choice) and the scheduler.
@@ -58,17 +61,29 @@ std::uint32_t leave_out_empty_probes(probes::ProbeVolume& volume, scene::Scene& 
 // "N of the grid's M probes (X x Y x Z): no surface within half a cell of ...".
 scene::PlanItem empty_probes_item(std::uint32_t left_out, const probes::ProbeGrid& grid);
 
-// The stream client's starting probes: the --probes volume (same grid and order as the scene's
+// Asks the servers of stream.connect for their stream's description (up to stream.wait_ms) into
+// stream.described, and says on stderr what the stream carries. --wait-ms bounds this wait and
+// the first frame's together: the time the description took comes off stream.wait_ms, which is
+// what the first frame then waits for the snapshot (make_probe_source), so a client with no
+// server answering waits --wait-ms once, not twice. Call after the options are checked.
+void describe_stream(StreamArgs& stream, const char* tag);
+
+// A stream client's probe grid: where the servers described their grid and its counts are those
+// this client places (--grid, the sidecar's, automatic), the servers' bounds, so a grid that
+// `serve --probe-placement fit` moved is the client's without a fit of its own (one line on
+// stderr says by how much it moved); otherwise place_probes, and a server of another grid is
+// refused by the scene identity.
+Placement client_placement(const ProbeArgs& probe, const scene::Scene& s, const StreamArgs& stream,
+                           const char* tag);
+
+// The stream client's starting probes: the --probes volume (same grid and order as the
 // placement, or an error), else none (direct light only until a server answers). Its moment
-// maps are the server's: the servers are asked for their stream's description (up to
-// stream.wait_ms) before the volume is made, so that the renderer sizes its visibility data
-// for what the stream carries; without an answer, the baked volume's, else --probe-visibility's
-// (8 by default, serve's default), and a server of other maps is refused with a line that says so.
-// --wait-ms bounds both waits together: the time the description took comes off stream.wait_ms,
-// which is what the first frame then waits for the snapshot (make_probe_source), so a client
-// with no server answering waits --wait-ms once, not twice.
-probes::ProbeVolume starting_volume(const ProbeArgs& probe, StreamArgs& stream,
-                                    const Placement& placement, const char* tag);
+// maps are the ones stream.described announces, so that the renderer sizes its visibility data
+// for what the stream carries; without a description, the baked volume's, else
+// --probe-visibility's (8 by default, serve's default), and a server of other maps is refused
+// with a line that says so.
+probes::ProbeVolume starting_volume(const ProbeArgs& probe, const StreamArgs& stream,
+                                    const Placement& placement);
 
 // The frame loop's probe source: in-process over `local`, else the stream's client (`tag` names
 // the command in its log lines). Everything is borrowed.

@@ -75,7 +75,8 @@ std::vector<std::string> dropped_endpoints(zmq::socket_t& events) {
 
 }  // namespace
 
-std::optional<FrameHeader> ask_stream_header(const ClientOptions& options, int wait_ms, std::string* problem) {
+std::optional<StreamDescription> ask_stream_description(const ClientOptions& options, int wait_ms,
+                                                        std::string* problem) {
   zmq::context_t context(1);
   std::vector<zmq::socket_t> sockets;
   std::string why = fmt::format("no answer within {} ms", wait_ms);
@@ -98,16 +99,27 @@ std::optional<FrameHeader> ask_stream_header(const ClientOptions& options, int w
         std::vector<zmq::message_t> parts;
         if (!zmq::recv_multipart(s, std::back_inserter(parts), zmq::recv_flags::dontwait)) continue;
         ++answers;
-        if (parts.size() != 2 || parts[0].to_string() != "INFO") {
+        if ((parts.size() != 2 && parts.size() != 3) || parts[0].to_string() != "INFO") {
           why = "an INFO reply of the wrong shape";
           continue;
         }
         DecodeLimits empty;  // the description holds no probes: nothing to inflate
         empty.max_payload_bytes = 0;
         const DecodeResult r = decode_frame(bytes_of(parts[1]), empty);
-        if (r.ok && r.frame.header.kind == FrameKind::kKeyframe && r.frame.updated.empty())
-          return r.frame.header;
-        why = r.ok ? "an INFO reply that is not an empty keyframe" : reject_name(r.reject) + ": " + r.detail;
+        if (!r.ok || r.frame.header.kind != FrameKind::kKeyframe || !r.frame.updated.empty()) {
+          why = r.ok ? "an INFO reply that is not an empty keyframe" : reject_name(r.reject) + ": " + r.detail;
+          continue;
+        }
+        StreamDescription d{r.frame.header, std::nullopt};
+        if (parts.size() == 3) {
+          scene::Aabb b;
+          if (!decode_grid_bounds(bytes_of(parts[2]), b)) {
+            why = fmt::format("grid bounds of {} bytes in an INFO reply, not 6 finite ordered floats", parts[2].size());
+            continue;
+          }
+          d.bounds = b;
+        }
+        return d;
       }
     }
   } catch (const zmq::error_t& e) {

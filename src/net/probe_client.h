@@ -62,13 +62,21 @@ struct ClientPoll {
   std::uint64_t bytes = 0;             // of every message received
 };
 
+// A server's description of its stream: the header of its empty keyframe (scene identity, grid
+// counts, SH order, moment resolution and range) and, from servers that send them, the grid's
+// bounds as placed.
+struct StreamDescription {
+  FrameHeader header;
+  std::optional<scene::Aabb> bounds;
+};
+
 // Asks every server of options.connect for its stream's description (the INFO request,
-// probe_server.h) and returns the header of the first valid answer within wait_ms: what a
-// client sizes its volume by (moment resolution and range) before it takes any frame. nullopt
-// when none answers in time; *problem then says why (no answer, or the answer refused: another
-// protocol version, say).
-std::optional<FrameHeader> ask_stream_header(const ClientOptions& options, int wait_ms,
-                                             std::string* problem = nullptr);
+// probe_server.h) and returns the first valid answer within wait_ms: what a client places its
+// probes by and sizes its volume by before it takes any frame. nullopt when none answers in
+// time; *problem then says why (no answer, or the answer refused: another protocol version,
+// bounds that are not 6 finite ordered floats, say).
+std::optional<StreamDescription> ask_stream_description(const ClientOptions& options, int wait_ms,
+                                                        std::string* problem = nullptr);
 
 class ProbeClient {
  public:

@@ -387,4 +387,26 @@ DecodeResult decode_frame(std::span<const std::uint8_t> message, const DecodeLim
   return result;
 }
 
+std::vector<std::uint8_t> encode_grid_bounds(const scene::Aabb& bounds) {
+  std::vector<std::uint8_t> out;
+  ByteWriter w(out);
+  for (const glm::vec3& corner : {bounds.min, bounds.max})
+    for (int c = 0; c < 3; ++c) w.f32(corner[c]);
+  return out;
+}
+
+bool decode_grid_bounds(std::span<const std::uint8_t> bytes, scene::Aabb& bounds) {
+  if (bytes.size() != kGridBoundsBytes) return false;
+  ByteReader r(bytes);
+  scene::Aabb b;
+  for (glm::vec3* corner : {&b.min, &b.max})
+    for (int c = 0; c < 3; ++c)
+      if (!r.f32((*corner)[c]) || !std::isfinite((*corner)[c])) return false;
+  if (b.empty()) return false;
+  for (int c = 0; c < 3; ++c)
+    if (!std::isfinite(b.max[c] - b.min[c])) return false;  // a grid's spacing must be finite too
+  bounds = b;
+  return true;
+}
+
 }  // namespace ddish::net

@@ -52,6 +52,7 @@
 #include <glm/vec3.hpp>
 
 #include "net/probe_encoding.h"
+#include "scene/aabb.h"
 
 namespace ddish::net {
 
@@ -165,5 +166,16 @@ std::vector<std::uint8_t> encode_frame(const ProbeFrame& frame, std::uint32_t* s
 // The header alone (for peeking at kind, frames and identity); false when the message is too
 // short or not a probe frame of this version. decode_frame is the only full check.
 bool peek_header(std::span<const std::uint8_t> message, FrameHeader& header);
+
+// The probe grid's bounds as the server placed them: the third part of its INFO reply
+// (probe_server.h), 6 f32 (the minimum corner, then the maximum; metres). A client whose grid
+// counts are the server's takes them as its own, so a grid that `serve --probe-placement fit`
+// moved is the client's too without a fit of its own (which could pick another offset in a near
+// tie on another machine, and be refused by the scene identity).
+inline constexpr std::size_t kGridBoundsBytes = 24;
+std::vector<std::uint8_t> encode_grid_bounds(const scene::Aabb& bounds);
+// False unless exactly kGridBoundsBytes of finite values with min <= max on every axis and a
+// finite extent (max - min); `bounds` is then left as it was.
+bool decode_grid_bounds(std::span<const std::uint8_t> bytes, scene::Aabb& bounds);
 
 }  // namespace ddish::net

@@ -99,7 +99,8 @@ struct ProbeServer::Impl {
     } else if (type == "INFO") {
       if (parts.size() != 2) return reject("bad-info-request", "an INFO request of several parts");
       if (options.info.empty()) return;
-      std::array<zmq::const_buffer, 3> reply = {zmq::buffer(id), zmq::str_buffer("INFO"), zmq::buffer(options.info)};
+      std::vector<zmq::const_buffer> reply = {zmq::buffer(id), zmq::str_buffer("INFO"), zmq::buffer(options.info)};
+      if (!options.info_bounds.empty()) reply.push_back(zmq::buffer(options.info_bounds));
       zmq::send_multipart(requests, reply, zmq::send_flags::dontwait);
       clients[id].last_heard_us = steady_now_us();
     } else {

@@ -8,9 +8,10 @@
 // Requests are multipart: ["SNAP", u64 client time µs, u32 bricks wanted...] is answered
 // ["SNAP", the same 8 bytes, i64 server steady-clock time µs, then topic and keyframe of each
 // wanted brick the server owns]; ["VIEW", view message (view_message.h)] replaces that client's
-// views; ["INFO"] is answered ["INFO", an empty keyframe of the stream] (its header is the
-// stream's description: protocol version, scene identity, grid, SH order, moment resolution
-// and range), which a client asks for before it sizes its volume. A client whose last message is older than the timeout stops counting.
+// views; ["INFO"] is answered ["INFO", an empty keyframe of the stream, the grid's bounds] (the
+// keyframe's header is the stream's description: protocol version, scene identity, grid counts,
+// SH order, moment resolution and range; the bounds are encode_grid_bounds's 24 bytes), which a
+// client asks for before it places its probes and sizes its volume. A client whose last message is older than the timeout stops counting.
 // ZMTP heartbeats run on every connection. Malformed requests are dropped and counted, with one
 // log line per kind.
 #pragma once
@@ -47,6 +48,9 @@ struct ServerOptions {
   // The answer to INFO requests: an empty keyframe of this stream
   // (PublishedProbes::description()); empty: INFO goes unanswered.
   std::vector<std::uint8_t> info;
+  // The INFO reply's third part: the grid's bounds (encode_grid_bounds); empty: a reply of two
+  // parts (a client then places its probes itself).
+  std::vector<std::uint8_t> info_bounds;
 };
 
 // Microseconds of the steady clock: the time base of server_time_us and of the client's clock.

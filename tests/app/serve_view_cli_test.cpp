@@ -95,6 +95,34 @@ TEST_F(ServeView, ViewEqualsInProcessRender) {
   }
 }
 
+// A server that moved its grid (--probe-placement fit: the Cornell box's 4x4x4 grid moves a
+// quarter cell along z) describes the grid's bounds at start, and a view that is not told of the
+// fit takes them: it says by how much its grid moved, its scene identity is the server's, and its
+// image equals the in-process render of the fitted grid (fp16, thresholds 0: exactly).
+TEST_F(ServeView, AViewTakesTheServersFittedGrid) {
+  ASSERT_EQ(run("render " + cli::cornell() + " " + kProbeFlags + " " + kImage +
+                " --probe-placement fit --probe-relocation --probe-visibility 8 --frames 3 --warmup-ms 0 --out " +
+                quote((dir_ / "render").string())).code, 0);
+  const std::string bind = address(8);
+  Process server(serve_args(bind, {"--probe-placement", "fit", "--frames", "3", "--seconds", "20", "--encoding", "fp16",
+                                   "--delta-threshold", "0", "--moment-threshold", "0", "--probe-relocation",
+                                   "--probe-visibility", "8"}),
+                 dir_ / "serve");
+  ASSERT_TRUE(wait_for(dir_ / "serve", "update 3:", 15.0)) << cli::slurp(dir_ / "serve");
+  const std::string out = (dir_ / "view").string();
+  const cli::Result v = run("view " + cli::cornell() + " --grid 4,4,4 " + kImage + " --connect " + bind +
+                            " --out " + quote(out));
+  ASSERT_EQ(v.code, 0) << v.err;
+  EXPECT_NE(v.err.find("probe grid 4x4x4 over the server's bounds (moved (0, 0, -0.25) cells"), std::string::npos)
+      << v.err;
+  EXPECT_EQ(v.err.find("probe placement: fit over"), std::string::npos) << v.err;  // no fit of its own
+  EXPECT_NE(v.err.find("snapshot of frame"), std::string::npos) << v.err;
+  const cli::Result c = run("compare " + quote(out + "/frame_0000.exr") + " " +
+                            quote((dir_ / "render" / "frame_0002.exr").string()));
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_GE(psnr_of(c), 1e9) << c.out;
+}
+
 // The server traces its probes in the light it is given (--sky, as render's): a view of an open
 // scene served under a bright sky equals the in-process render under that sky, and not the one
 // under the default sky.

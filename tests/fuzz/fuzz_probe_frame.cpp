@@ -6,7 +6,9 @@
 // grid and moment resolution, which then holds the frame's maps, or is refused there for an
 // offset beyond kMaxRelocation cells. Seeds: tests/fuzz/corpus/probe_frame/ (keyframes and
 // deltas in every encoding, with zstd, L1 without moments, L2 and L4 with 2x2 and 4x4 moment
-// maps, deltas mapping some of their probes, relocated probes, and one version-1 frame).
+// maps, deltas mapping some of their probes, relocated probes, and one version-1 frame). The
+// same input is also tried as an INFO reply's grid bounds (decode_grid_bounds; seed
+// grid_bounds.bin).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -17,12 +19,23 @@
 #include "fuzz_support.h"
 #include "net/probe_frame.h"
 #include "net/probe_mirror.h"
+#include "probes/probe_grid.h"
 #include "probes/probe_volume.h"
 
 using fuzz::require;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace ddish;
+  // The same bytes as an INFO reply's grid bounds: accepted only as 6 finite ordered floats, which
+  // make a grid and re-encode to the same bytes.
+  scene::Aabb bounds;
+  if (net::decode_grid_bounds({data, size}, bounds)) {
+    require(size == net::kGridBoundsBytes && !bounds.empty());
+    for (int c = 0; c < 3; ++c)
+      require(std::isfinite(bounds.min[c]) && std::isfinite(bounds.max[c]) && std::isfinite(bounds.extent()[c]));
+    require(probes::ProbeGrid(bounds, {2, 2, 2}).probe_count() == 8);
+    require(net::encode_grid_bounds(bounds) == std::vector<std::uint8_t>(data, data + size));
+  }
   net::DecodeLimits limits;
   limits.max_payload_bytes = std::size_t(1) << 20;  // keeps each input's memory small
   const net::DecodeResult r = net::decode_frame({data, size}, limits);

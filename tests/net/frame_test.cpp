@@ -356,5 +356,37 @@ TEST(FrameReject, RandomCorruptionNeverCrashes) {
   EXPECT_GT(rejected, 1000);
 }
 
+// The INFO reply's grid bounds: 24 bytes that round-trip exactly (a flat axis included); a wrong
+// length, a non-finite value, a minimum above the maximum or an extent beyond float's range is
+// refused and leaves the output alone.
+TEST(GridBounds, RoundTripAndRefusals) {
+  const scene::Aabb b{glm::vec3(-12.625f, 0.0f, 1e-3f), glm::vec3(11.0f, 0.0f, 1e4f)};
+  const std::vector<std::uint8_t> bytes = encode_grid_bounds(b);
+  ASSERT_EQ(bytes.size(), kGridBoundsBytes);
+  scene::Aabb out;
+  ASSERT_TRUE(decode_grid_bounds(bytes, out));
+  EXPECT_EQ(out.min, b.min);
+  EXPECT_EQ(out.max, b.max);
+
+  const scene::Aabb untouched{glm::vec3(1.0f), glm::vec3(2.0f)};
+  const auto refused = [&](std::vector<std::uint8_t> bad) {
+    scene::Aabb o = untouched;
+    const bool ok = decode_grid_bounds(bad, o);
+    return !ok && o.min == untouched.min && o.max == untouched.max;
+  };
+  EXPECT_TRUE(refused({bytes.begin(), bytes.end() - 1}));
+  std::vector<std::uint8_t> longer = bytes;
+  longer.push_back(0);
+  EXPECT_TRUE(refused(longer));
+  EXPECT_TRUE(refused({}));
+  for (const float v : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    std::vector<std::uint8_t> nan = bytes;
+    std::memcpy(nan.data() + 4, &v, 4);  // min.y
+    EXPECT_TRUE(refused(nan)) << v;
+  }
+  EXPECT_TRUE(refused(encode_grid_bounds({glm::vec3(0.0f, 2.0f, 0.0f), glm::vec3(1.0f)})));  // min.y > max.y
+  EXPECT_TRUE(refused(encode_grid_bounds({glm::vec3(-3e38f), glm::vec3(3e38f)})));  // extent overflows
+}
+
 }  // namespace
 }  // namespace ddish::net

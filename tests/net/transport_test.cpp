@@ -11,6 +11,7 @@
 #include <thread>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <optional>
 #include <set>
 #include <memory>
@@ -59,7 +60,11 @@ struct Server {
   Server(const std::string& bind, std::uint64_t scene, std::uint64_t stream,
          std::optional<CurveServerKeys> curve = std::nullopt)
       : published(volume, scene, stream, {.encoding = Encoding::kHalf}),
-        server({.bind = bind, .client_timeout_ms = 500, .curve = std::move(curve), .info = published.description()}) {}
+        server({.bind = bind,
+                .client_timeout_ms = 500,
+                .curve = std::move(curve),
+                .info = published.description(),
+                .info_bounds = encode_grid_bounds(grid().bounds())}) {}
 
   // One tick: every probe traced anew, the delta published, requests answered for `ms`.
   void tick(int ms = 5) {
@@ -144,21 +149,72 @@ TEST(Transport, MalformedMessagesAreDroppedAndCounted) {
   EXPECT_EQ(log_lines.size(), 2u);  // one line per kind
 }
 
-// A server's INFO reply describes its stream (the empty keyframe's header): what a view sizes its
-// volume by before it takes any frame.
+// A server's INFO reply describes its stream (the empty keyframe's header) and its grid's bounds:
+// what a view places its probes by and sizes its volume by before it takes any frame.
 TEST(Transport, InfoDescribesTheStream) {
   Server s(address(6), kScene, 3);
-  std::optional<FrameHeader> h;
-  std::thread asker([&] { h = ask_stream_header(client_options(address(6)), 3000); });
+  std::optional<StreamDescription> d;
+  std::thread asker([&] { d = ask_stream_description(client_options(address(6)), 3000); });
   for (int turn = 0; turn < 300 && s.frame < 3; ++turn) s.tick(5);
-  for (int turn = 0; turn < 300 && !h; ++turn) s.server.serve_requests(10, [&](std::uint32_t) { return s.published.snapshot(); });
+  for (int turn = 0; turn < 300 && !d; ++turn) s.server.serve_requests(10, [&](std::uint32_t) { return s.published.snapshot(); });
   asker.join();
-  ASSERT_TRUE(h);
-  EXPECT_EQ(h->scene_id, kScene);
-  EXPECT_EQ(h->stream_id, 3u);
-  EXPECT_EQ(h->counts[0], 4u);
-  EXPECT_EQ(h->sh_order, 2);
-  EXPECT_EQ(h->moment_resolution, 0);  // this test server's volume has no moments
+  ASSERT_TRUE(d);
+  const FrameHeader& h = d->header;
+  EXPECT_EQ(h.scene_id, kScene);
+  EXPECT_EQ(h.stream_id, 3u);
+  EXPECT_EQ(h.counts[0], 4u);
+  EXPECT_EQ(h.sh_order, 2);
+  EXPECT_EQ(h.moment_resolution, 0);  // this test server's volume has no moments
+  ASSERT_TRUE(d->bounds);
+  EXPECT_EQ(d->bounds->min, grid().bounds().min);
+  EXPECT_EQ(d->bounds->max, grid().bounds().max);
+}
+
+// A peer whose INFO reply has a description but bounds of the wrong size, or NaN, is no
+// description: the client says why and places its probes itself; a reply of two parts (a server
+// that sends no bounds) is a description without bounds.
+TEST(Transport, InfoBoundsAreCheckedAndOptional) {
+  const Endpoint e = parse_endpoint(address(9));
+  zmq::context_t context;
+  zmq::socket_t router(context, zmq::socket_type::router);
+  router.set(zmq::sockopt::linger, 0);
+  router.bind(e.requests());
+  probes::ProbeVolume volume(grid(), 2);
+  const std::vector<std::uint8_t> description = PublishedProbes(volume, kScene, 5, {}).description();
+  std::vector<std::uint8_t> nan = encode_grid_bounds(grid().bounds());
+  const float q = std::numeric_limits<float>::quiet_NaN();
+  std::memcpy(nan.data() + 12, &q, 4);
+  const std::vector<std::vector<std::uint8_t>> thirds = {std::vector<std::uint8_t>(20, 0), nan, {}};
+  std::atomic<int> which{0};
+  std::atomic<bool> stop{false};
+  std::thread peer([&] {
+    while (!stop) {
+      zmq::pollitem_t item{router.handle(), 0, ZMQ_POLLIN, 0};
+      zmq::poll(&item, 1, std::chrono::milliseconds(10));
+      std::vector<zmq::message_t> parts;
+      if (!zmq::recv_multipart(router, std::back_inserter(parts), zmq::recv_flags::dontwait)) continue;
+      if (parts.size() != 2 || parts[1].to_string() != "INFO") continue;
+      std::vector<zmq::const_buffer> reply = {zmq::buffer(parts[0].data(), parts[0].size()), zmq::str_buffer("INFO"),
+                                              zmq::buffer(description)};
+      const auto& third = thirds[std::size_t(which.load())];
+      if (!third.empty()) reply.push_back(zmq::buffer(third));
+      zmq::send_multipart(router, reply);
+    }
+  });
+  std::string problem;
+  EXPECT_FALSE(ask_stream_description(client_options(address(9)), 2000, &problem));
+  EXPECT_EQ(problem, "grid bounds of 20 bytes in an INFO reply, not 6 finite ordered floats");
+  which = 1;
+  problem.clear();
+  EXPECT_FALSE(ask_stream_description(client_options(address(9)), 2000, &problem));
+  EXPECT_EQ(problem, "grid bounds of 24 bytes in an INFO reply, not 6 finite ordered floats");
+  which = 2;
+  const std::optional<StreamDescription> d = ask_stream_description(client_options(address(9)), 2000, &problem);
+  stop = true;
+  peer.join();
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->header.scene_id, kScene);
+  EXPECT_FALSE(d->bounds);
 }
 
 // A peer of protocol version 1 (before moments: an 88-byte header): the INFO request says
@@ -194,7 +250,7 @@ TEST(Transport, AVersionOnePeerGetsOneClearLine) {
     }
   });
   std::string problem;
-  EXPECT_FALSE(ask_stream_header(client_options(address(7)), 2000, &problem));
+  EXPECT_FALSE(ask_stream_description(client_options(address(7)), 2000, &problem));
   EXPECT_EQ(problem, "bad-version: protocol version 1, this build speaks 2");
   log_lines.clear();
   probes::ProbeVolume mine(grid(), 2);
