@@ -11,6 +11,7 @@
 #include <thread>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <set>
@@ -170,15 +171,41 @@ TEST(Transport, InfoDescribesTheStream) {
   EXPECT_EQ(d->bounds->max, grid().bounds().max);
 }
 
+// A hand-written server: a ROUTER on the request address of `bind` that hands every request
+// (identity frame first) to `answer` on a thread of its own until it is destroyed. For peers that
+// a real ProbeServer would never be.
+class ScriptedPeer {
+ public:
+  using Answer = std::function<void(zmq::socket_t& router, std::vector<zmq::message_t>& parts)>;
+  ScriptedPeer(const std::string& bind, Answer answer) : router_(context_, zmq::socket_type::router) {
+    router_.set(zmq::sockopt::linger, 0);
+    router_.bind(parse_endpoint(bind).requests());
+    thread_ = std::thread([this, answer = std::move(answer)] {
+      while (!stop_) {
+        zmq::pollitem_t item{router_.handle(), 0, ZMQ_POLLIN, 0};
+        zmq::poll(&item, 1, std::chrono::milliseconds(10));
+        std::vector<zmq::message_t> parts;
+        if (zmq::recv_multipart(router_, std::back_inserter(parts), zmq::recv_flags::dontwait) && parts.size() >= 2)
+          answer(router_, parts);
+      }
+    });
+  }
+  ~ScriptedPeer() {
+    stop_ = true;
+    thread_.join();
+  }
+
+ private:
+  zmq::context_t context_;
+  zmq::socket_t router_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
 // A peer whose INFO reply has a description but bounds of the wrong size, or NaN, is no
 // description: the client says why and places its probes itself; a reply of two parts (a server
 // that sends no bounds) is a description without bounds.
 TEST(Transport, InfoBoundsAreCheckedAndOptional) {
-  const Endpoint e = parse_endpoint(address(9));
-  zmq::context_t context;
-  zmq::socket_t router(context, zmq::socket_type::router);
-  router.set(zmq::sockopt::linger, 0);
-  router.bind(e.requests());
   probes::ProbeVolume volume(grid(), 2);
   const std::vector<std::uint8_t> description = PublishedProbes(volume, kScene, 5, {}).description();
   std::vector<std::uint8_t> nan = encode_grid_bounds(grid().bounds());
@@ -186,32 +213,26 @@ TEST(Transport, InfoBoundsAreCheckedAndOptional) {
   std::memcpy(nan.data() + 12, &q, 4);
   const std::vector<std::vector<std::uint8_t>> thirds = {std::vector<std::uint8_t>(20, 0), nan, {}};
   std::atomic<int> which{0};
-  std::atomic<bool> stop{false};
-  std::thread peer([&] {
-    while (!stop) {
-      zmq::pollitem_t item{router.handle(), 0, ZMQ_POLLIN, 0};
-      zmq::poll(&item, 1, std::chrono::milliseconds(10));
-      std::vector<zmq::message_t> parts;
-      if (!zmq::recv_multipart(router, std::back_inserter(parts), zmq::recv_flags::dontwait)) continue;
-      if (parts.size() != 2 || parts[1].to_string() != "INFO") continue;
+  std::optional<StreamDescription> d;
+  std::string problem;
+  {
+    ScriptedPeer peer(address(9), [&](zmq::socket_t& router, std::vector<zmq::message_t>& parts) {
+      if (parts.size() != 2 || parts[1].to_string() != "INFO") return;
       std::vector<zmq::const_buffer> reply = {zmq::buffer(parts[0].data(), parts[0].size()), zmq::str_buffer("INFO"),
                                               zmq::buffer(description)};
       const auto& third = thirds[std::size_t(which.load())];
       if (!third.empty()) reply.push_back(zmq::buffer(third));
       zmq::send_multipart(router, reply);
-    }
-  });
-  std::string problem;
-  EXPECT_FALSE(ask_stream_description(client_options(address(9)), 2000, &problem));
-  EXPECT_EQ(problem, "grid bounds of 20 bytes in an INFO reply, not 6 finite ordered floats");
-  which = 1;
-  problem.clear();
-  EXPECT_FALSE(ask_stream_description(client_options(address(9)), 2000, &problem));
-  EXPECT_EQ(problem, "grid bounds of 24 bytes in an INFO reply, not 6 finite ordered floats");
-  which = 2;
-  const std::optional<StreamDescription> d = ask_stream_description(client_options(address(9)), 2000, &problem);
-  stop = true;
-  peer.join();
+    });
+    EXPECT_FALSE(ask_stream_description(client_options(address(9)), 2000, &problem));
+    EXPECT_EQ(problem, "grid bounds of 20 bytes in an INFO reply, not 6 finite ordered floats");
+    which = 1;
+    problem.clear();
+    EXPECT_FALSE(ask_stream_description(client_options(address(9)), 2000, &problem));
+    EXPECT_EQ(problem, "grid bounds of 24 bytes in an INFO reply, not 6 finite ordered floats");
+    which = 2;
+    d = ask_stream_description(client_options(address(9)), 2000, &problem);
+  }
   ASSERT_TRUE(d);
   EXPECT_EQ(d->header.scene_id, kScene);
   EXPECT_FALSE(d->bounds);
@@ -220,33 +241,21 @@ TEST(Transport, InfoBoundsAreCheckedAndOptional) {
 // A peer of protocol version 1 (before moments: an 88-byte header): the INFO request says
 // "bad-version", the snapshot is refused with one line that names both versions, nothing applies.
 TEST(Transport, AVersionOnePeerGetsOneClearLine) {
-  const Endpoint e = parse_endpoint(address(7));
-  zmq::context_t context;
-  zmq::socket_t router(context, zmq::socket_type::router);
-  router.set(zmq::sockopt::linger, 0);
-  router.bind(e.requests());
   std::vector<std::uint8_t> v1(88, 0);  // a version-1 empty keyframe
   std::memcpy(v1.data(), kFrameMagic, 4);
   v1[4] = 1;
-  std::atomic<bool> stop{false};
-  std::thread peer([&] {
-    while (!stop) {
-      zmq::pollitem_t item{router.handle(), 0, ZMQ_POLLIN, 0};
-      zmq::poll(&item, 1, std::chrono::milliseconds(10));
-      std::vector<zmq::message_t> parts;
-      if (!zmq::recv_multipart(router, std::back_inserter(parts), zmq::recv_flags::dontwait)) continue;
-      const std::string type = parts[1].to_string();
-      if (type == "INFO") {
-        std::array<zmq::const_buffer, 3> reply = {zmq::buffer(parts[0].data(), parts[0].size()),
-                                                  zmq::str_buffer("INFO"), zmq::buffer(v1)};
-        zmq::send_multipart(router, reply);
-      } else if (type == "SNAP" && parts.size() == 4) {
-        const std::string topic = brick_topic(0);
-        std::array<zmq::const_buffer, 6> reply = {zmq::buffer(parts[0].data(), parts[0].size()), zmq::str_buffer("SNAP"),
-                                                  zmq::buffer(parts[2].data(), 8), zmq::buffer(parts[2].data(), 8),
-                                                  zmq::buffer(topic), zmq::buffer(v1)};
-        zmq::send_multipart(router, reply);
-      }
+  auto peer = std::make_unique<ScriptedPeer>(address(7), [&](zmq::socket_t& router, std::vector<zmq::message_t>& parts) {
+    const std::string type = parts[1].to_string();
+    if (type == "INFO") {
+      std::array<zmq::const_buffer, 3> reply = {zmq::buffer(parts[0].data(), parts[0].size()), zmq::str_buffer("INFO"),
+                                                zmq::buffer(v1)};
+      zmq::send_multipart(router, reply);
+    } else if (type == "SNAP" && parts.size() == 4) {
+      const std::string topic = brick_topic(0);
+      std::array<zmq::const_buffer, 6> reply = {zmq::buffer(parts[0].data(), parts[0].size()), zmq::str_buffer("SNAP"),
+                                                zmq::buffer(parts[2].data(), 8), zmq::buffer(parts[2].data(), 8),
+                                                zmq::buffer(topic), zmq::buffer(v1)};
+      zmq::send_multipart(router, reply);
     }
   });
   std::string problem;
@@ -260,8 +269,7 @@ TEST(Transport, AVersionOnePeerGetsOneClearLine) {
     EXPECT_GE(client.rejected(RejectKind::kBadVersion), 2u);  // every snapshot, one line
     EXPECT_FALSE(client.ever_synced());
   }
-  stop = true;
-  peer.join();
+  peer.reset();
   ASSERT_EQ(log_lines.size(), 1u);
   EXPECT_EQ(log_lines[0], "refusing the probe server at " + address(7) +
                               ": it speaks another version of the probe stream (protocol version 1, this "
