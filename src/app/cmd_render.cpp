@@ -213,7 +213,7 @@ GpuRun render_frames(const RenderArgs& a, scene::Scene& s, const Placement& plac
     std::fprintf(stderr, "%s: probe tracer %s\n", a.tag(), tracer->why.c_str());
   }
   const bool gpu_tracer = tracer && tracer->kind == TracerKind::vulkan;
-  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream, placement)
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream, placement, a.tag())
                                       : local_volume(a.probe, placement.grid);
   const std::uint32_t empty_probes = remote ? 0 : leave_out_empty_probes(volume, s);
 

@@ -123,7 +123,7 @@ XrRun run_session(const XrArgs& a, scene::Scene& s, const Placement& placement, 
                xri.system_name().c_str(), eyes[0].width, eyes[0].height,
                xri.validation_enabled() ? ", OpenXR core validation on" : "");
 
-  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream, placement)
+  probes::ProbeVolume volume = remote ? starting_volume(a.probe, stream, placement, "xr")
                                       : local_volume(a.probe, placement.grid);
   if (!remote) {
     const std::uint32_t n = leave_out_empty_probes(volume, s);

@@ -71,7 +71,7 @@ void describe_stream(StreamArgs& stream, const char* tag) {
                  resolution > 0 ? fmt::format("{0}x{0} distance-moment maps per probe (visibility on)", resolution).c_str()
                                 : "no distance moments (visibility off)");
   } else {
-    std::fprintf(stderr, "%s: no stream description from %s (%s): this client's own probe placement and moment maps until a server answers\n", tag,
+    std::fprintf(stderr, "%s: no stream description from %s (%s): this client places its own probes\n", tag,
                  stream.connect.c_str(), problem.c_str());
   }
 }
@@ -99,7 +99,7 @@ Placement client_placement(const ProbeArgs& probe, const scene::Scene& s, const 
 }
 
 probes::ProbeVolume starting_volume(const ProbeArgs& probe, const StreamArgs& stream,
-                                    const Placement& placement) {
+                                    const Placement& placement, const char* tag) {
   std::optional<probes::ProbeVolume> baked;
   if (!stream.baked.empty()) {
     baked = probes::read_volume_file(stream.baked).to_volume();
@@ -113,6 +113,9 @@ probes::ProbeVolume starting_volume(const ProbeArgs& probe, const StreamArgs& st
   const int resolution = stream.described ? stream.described->header.moment_resolution
                          : baked         ? baked->moment_resolution()
                                          : probe.visibility;
+  if (!stream.described)
+    std::fprintf(stderr, "%s: assuming %s until a server answers\n", tag,
+                 resolution > 0 ? fmt::format("{0}x{0} distance-moment maps", resolution).c_str() : "no distance moments");
   if (!baked) return probes::ProbeVolume(placement.grid, probe.sh_order, resolution);
   if (baked->moment_resolution() == resolution) return std::move(*baked);
   // The baked probes' light, without their moment maps (of another resolution than the

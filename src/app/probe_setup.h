@@ -80,10 +80,10 @@ Placement client_placement(const ProbeArgs& probe, const scene::Scene& s, const 
 // placement, or an error), else none (direct light only until a server answers). Its moment
 // maps are the ones stream.described announces, so that the renderer sizes its visibility data
 // for what the stream carries; without a description, the baked volume's, else
-// --probe-visibility's (8 by default, serve's default), and a server of other maps is refused
-// with a line that says so.
+// --probe-visibility's (8 by default, serve's default; one line on stderr says which), and a
+// server of other maps is refused with a line that says so.
 probes::ProbeVolume starting_volume(const ProbeArgs& probe, const StreamArgs& stream,
-                                    const Placement& placement);
+                                    const Placement& placement, const char* tag);
 
 // The frame loop's probe source: in-process over `local`, else the stream's client (`tag` names
 // the command in its log lines). Everything is borrowed.
